@@ -1,0 +1,120 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+#include "input.hpp"
+
+#include <opencv2/shading.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace cv {
+namespace shading {
+namespace detail {
+
+static std::string describe(const Mat& m)
+{
+    return format("%dx%d %s", m.rows, m.cols, typeToString(m.type()).c_str());
+}
+
+std::vector<double> readRows(InputArray arr, const char* argName, int dims, int expectedCount)
+{
+    const Mat m = arr.getMat();
+    const char* shape = dims == 1 ? "N x 1 or 1 x N" : dims == 2 ? "N x 2" : "N x 3";
+    const int depth = m.depth();
+    if (!m.empty() && depth != CV_32F && depth != CV_64F && depth != CV_32S)
+        CV_Error(Error::StsUnsupportedFormat,
+                 format("%s: expected elements of CV_32F, CV_64F or CV_32S, got %s", argName,
+                        describe(m).c_str()));
+    int count = -1;
+    if (m.empty())
+        count = 0;
+    else if (m.dims == 2 && m.channels() == 1 && m.cols == dims)
+        count = m.rows;  // one item per row
+    else if (m.dims == 2 && m.channels() == dims && (m.rows == 1 || m.cols == 1))
+        count = m.rows * m.cols;  // vector<Point2f>, vector<Vec3f>, ... or a row vector
+    else if (m.dims == 2 && m.channels() == 1 && dims == 1 && m.rows == 1)
+        count = m.cols;  // 1 x N depths
+    if (count < 0)
+        CV_Error(Error::StsBadSize, format("%s: expected %s values (one row per item), got %s",
+                                           argName, shape, describe(m).c_str()));
+    if (expectedCount >= 0 && count != expectedCount)
+        CV_Error(Error::StsBadSize, format("%s: expected %d items, got %d (%s)", argName,
+                                           expectedCount, count, describe(m).c_str()));
+    std::vector<double> values(size_t(count) * dims);
+    if (count > 0) {
+        Mat dst(m.rows, m.cols, CV_MAKETYPE(CV_64F, m.channels()), values.data());
+        m.convertTo(dst, CV_64F);
+    }
+    return values;
+}
+
+std::vector<Point2d> readPoints(InputArray arr, const char* argName, int expectedCount)
+{
+    const std::vector<double> v = readRows(arr, argName, 2, expectedCount);
+    std::vector<Point2d> points(v.size() / 2);
+    for (size_t i = 0; i < points.size(); i++)
+        points[i] = Point2d(v[2 * i], v[2 * i + 1]);
+    return points;
+}
+
+std::vector<Vec3d> readColors(InputArray arr, const char* argName, int expectedCount)
+{
+    const std::vector<double> v = readRows(arr, argName, 3, expectedCount);
+    std::vector<Vec3d> colors(v.size() / 3);
+    for (size_t i = 0; i < colors.size(); i++)
+        colors[i] = Vec3d(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    return colors;
+}
+
+std::vector<Vec3i> readFaces(InputArray arr, const char* argName, int vertexCount)
+{
+    const std::vector<double> v = readRows(arr, argName, 3, -1);
+    std::vector<Vec3i> faces(v.size() / 3);
+    for (size_t i = 0; i < faces.size(); i++) {
+        for (int k = 0; k < 3; k++) {
+            const double index = v[3 * i + k];
+            if (!(index >= 0 && index < vertexCount))
+                CV_Error(Error::StsOutOfRange,
+                         format("%s: face %zu has index %g, outside [0, %d) (the vertex count)",
+                                argName, i, index, vertexCount));
+            if (index != std::floor(index))
+                CV_Error(Error::StsBadArg, format("%s: face %zu has non-integer index %g",
+                                                  argName, i, index));
+            faces[i][k] = int(index);
+        }
+    }
+    return faces;
+}
+
+std::vector<double> readDepths(InputArray arr, const char* argName, int expectedCount)
+{
+    if (arr.empty())
+        return {};
+    return readRows(arr, argName, 1, expectedCount);
+}
+
+void checkCanvas(InputOutputArray canvas, const char* argName)
+{
+    if (canvas.empty())
+        CV_Error(Error::StsBadArg, format("%s: the image is empty; allocate it first (e.g. "
+                                          "Mat(rows, cols, CV_32FC3, background))", argName));
+    const int type = canvas.type();
+    if (type != CV_32FC3 && type != CV_8UC3)
+        CV_Error(Error::StsUnsupportedFormat,
+                 format("%s: expected a CV_32FC3 or CV_8UC3 image, got %s", argName,
+                        typeToString(type).c_str()));
+    if (canvas.dims() > 2)
+        CV_Error(Error::StsBadArg, format("%s: expected a 2D image, got %d dimensions", argName,
+                                          canvas.dims()));
+}
+
+void checkShadeType(int shadeType)
+{
+    if (shadeType != SHADE_FLAT && shadeType != SHADE_GOURAUD)
+        CV_Error(Error::StsBadFlag,
+                 format("shadeType: expected SHADE_FLAT (0) or SHADE_GOURAUD (1), got %d",
+                        shadeType));
+}
+
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv

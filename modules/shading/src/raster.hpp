@@ -1,0 +1,199 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// The rasterization core: exact fixed-point triangle setup and the scan-line walk that turns a
+// triangle into horizontal spans [xBegin, xEnd) per row. Every drawing feature is a span shader
+// on top of this walk; nothing else decides which samples a triangle covers.
+#ifndef OPENCV_SHADING_RASTER_HPP
+#define OPENCV_SHADING_RASTER_HPP
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+namespace cv {
+namespace shading {
+namespace detail {
+
+// GCC and Clang provide 128-bit integers; __extension__ keeps -Wpedantic quiet about it.
+__extension__ typedef __int128 Int128;
+
+//! Vertices live on a 1/256 pixel grid, as on GPUs: coverage is then decided exactly.
+constexpr int kSubpixelBits = 8;
+constexpr int64_t kSubpixelOne = int64_t(1) << kSubpixelBits;
+//! Largest accepted |coordinate| (2^40 px). With it every setup product fits in 128 bits and
+//! every per-row quantity in 64 bits, so far off-canvas vertices clip exactly.
+constexpr double kMaxCoordinate = 1099511627776.0;
+
+struct FixedPoint {
+    int64_t x, y;
+};
+
+//! Snaps (x, y) to the subpixel grid; false for NaN, infinite or out-of-range coordinates.
+inline bool snapToGrid(double x, double y, FixedPoint& p)
+{
+    if (!(std::abs(x) <= kMaxCoordinate && std::abs(y) <= kMaxCoordinate))
+        return false;
+    p.x = std::llround(x * double(kSubpixelOne));
+    p.y = std::llround(y * double(kSubpixelOne));
+    return true;
+}
+
+template <typename T>
+inline T floorDiv(T a, T b)  // b > 0
+{
+    T q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+template <typename T>
+inline T ceilDiv(T a, T b)  // b > 0
+{
+    return -floorDiv<T>(-a, b);
+}
+
+/** Walks one non-horizontal edge down the scan lines (the seed's active boundary point,
+x += 1/m, done in exact integers).
+
+For row y the edge crosses at c(y) = N(y) / D pixels, N stepping by a constant per row. The
+walker holds x = ceil(c(y)), the first sample at or right of the crossing: a left edge covers
+[x, ...), a right edge covers [..., x), which is exactly the top-left rule for on-edge samples.
+*/
+struct EdgeWalker {
+    int64_t x;        //!< ceil of the crossing for the current row
+    int64_t rem;      //!< N = x * den - rem, 0 <= rem < den
+    int64_t step;     //!< ceil(per-row increment / den)
+    int64_t stepRem;  //!< step * den - increment, in [0, den)
+    int64_t den;
+
+    //! Positions the walker at pixel row `row` for the edge a -> b (a.y < b.y).
+    void start(const FixedPoint& a, const FixedPoint& b, int64_t row)
+    {
+        const int64_t dy = b.y - a.y, dx = b.x - a.x;
+        den = dy << kSubpixelBits;
+        const Int128 n = Int128(a.x) * dy + Int128((row << kSubpixelBits) - a.y) * dx;
+        const Int128 q = ceilDiv<Int128>(n, den);
+        x = int64_t(q);
+        rem = int64_t(q * den - n);
+        const int64_t inc = dx << kSubpixelBits;
+        step = ceilDiv<int64_t>(inc, den);
+        stepRem = step * den - inc;
+    }
+
+    void nextRow()
+    {
+        x += step;
+        rem += stepRem;
+        if (rem >= den) {
+            rem -= den;
+            --x;
+        }
+    }
+};
+
+/** A triangle ready to walk: vertices sorted top to bottom and its rows clipped to the target.
+
+Rows [rowBegin, rowMid) lie between the top and middle vertex (active edges: long and upper
+short), rows [rowMid, rowEnd) between the middle and bottom vertex (long and lower short). A
+horizontal edge spans no rows, so it never becomes active: the seed's special cases (horizontal
+edges, scan lines through vertices, coincident vertices) all fall out of the ceil() row bounds.
+*/
+struct TriangleSetup {
+    FixedPoint top, mid, bottom;
+    int rowBegin, rowMid, rowEnd;  //!< clipped to [0, height]
+    bool longEdgeLeft;             //!< the top-bottom edge bounds spans on the left
+};
+
+//! Pixel row bound ceil(y / 256) clamped to [0, limit].
+inline int clampedRow(int64_t fixedY, int limit)
+{
+    const int64_t row = ceilDiv<int64_t>(fixedY, kSubpixelOne);
+    return int(std::min<int64_t>(std::max<int64_t>(row, 0), limit));
+}
+
+inline bool above(const FixedPoint& a, const FixedPoint& b)
+{
+    return a.y < b.y || (a.y == b.y && a.x < b.x);
+}
+
+/** Sets up triangle v for a target of `size` pixels. Returns false when it covers no sample of
+the target: a non-finite or out-of-range vertex, zero area, or no overlap. `order` receives the
+input indices of top, middle and bottom vertex (sorted by y, then x): a canonical order, so
+everything derived from it is independent of the order the vertices were given in. */
+inline bool setupTriangle(const Point2d v[3], Size size, TriangleSetup& t, int order[3])
+{
+    FixedPoint p[3];
+    for (int i = 0; i < 3; i++)
+        if (!snapToGrid(v[i].x, v[i].y, p[i]))
+            return false;
+    order[0] = 0, order[1] = 1, order[2] = 2;
+    auto sortPair = [&](int i, int j) {
+        if (above(p[j], p[i])) {
+            std::swap(p[i], p[j]);
+            std::swap(order[i], order[j]);
+        }
+    };
+    sortPair(0, 1);
+    sortPair(1, 2);
+    sortPair(0, 1);
+    // Sign of the middle vertex against the long edge: < 0 puts it to the right.
+    const Int128 cross = Int128(p[2].x - p[0].x) * (p[1].y - p[0].y) -
+                         Int128(p[2].y - p[0].y) * (p[1].x - p[0].x);
+    if (cross == 0)
+        return false;
+    const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
+    const int64_t xMax = std::max({p[0].x, p[1].x, p[2].x});
+    if (xMax < 0 || xMin > (int64_t(size.width) << kSubpixelBits))
+        return false;
+    t.top = p[0];
+    t.mid = p[1];
+    t.bottom = p[2];
+    t.rowBegin = clampedRow(p[0].y, size.height);
+    t.rowMid = clampedRow(p[1].y, size.height);
+    t.rowEnd = clampedRow(p[2].y, size.height);
+    t.longEdgeLeft = cross < 0;
+    return t.rowBegin < t.rowEnd;
+}
+
+/** Calls spanFn(row, xBegin, xEnd) for every non-empty span of t within rows
+[rowFirst, rowLast) and columns [0, width). */
+template <typename SpanFn>
+inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int width,
+                         SpanFn&& spanFn)
+{
+    const int begin = std::max(t.rowBegin, rowFirst);
+    const int end = std::min(t.rowEnd, rowLast);
+    if (begin >= end)
+        return;
+    EdgeWalker longEdge, shortEdge;
+    longEdge.start(t.top, t.bottom, begin);
+    auto emitRows = [&](int r0, int r1) {
+        const EdgeWalker& left = t.longEdgeLeft ? longEdge : shortEdge;
+        const EdgeWalker& right = t.longEdgeLeft ? shortEdge : longEdge;
+        for (int row = r0; row < r1; row++) {
+            const int64_t xl = std::max<int64_t>(left.x, 0);
+            const int64_t xr = std::min<int64_t>(right.x, width);
+            if (xl < xr)
+                spanFn(row, int(xl), int(xr));
+            longEdge.nextRow();
+            shortEdge.nextRow();
+        }
+    };
+    const int mid = std::min(std::max(t.rowMid, begin), end);
+    if (begin < mid) {
+        shortEdge.start(t.top, t.mid, begin);
+        emitRows(begin, mid);
+    }
+    if (mid < end) {
+        shortEdge.start(t.mid, t.bottom, mid);
+        emitRows(mid, end);
+    }
+}
+
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv
+
+#endif  // OPENCV_SHADING_RASTER_HPP

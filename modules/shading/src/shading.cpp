@@ -1,0 +1,121 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// The public functions: validate and normalise at the edge (input.cpp), then hand plain data to
+// the one rasterization core (raster.hpp) with a span shader (shaders.hpp).
+#include <opencv2/shading.hpp>
+
+#include "input.hpp"
+#include "mesh.hpp"
+#include "raster.hpp"
+#include "shaders.hpp"
+
+namespace cv {
+namespace shading {
+
+using namespace detail;
+
+namespace {
+
+template <template <typename> class Shader, typename T>
+void drawTriangle(Mat& canvas, const Point2d v[3], const Vec3d c[3])
+{
+    TriangleSetup setup;
+    int order[3];
+    if (!setupTriangle(v, canvas.size(), setup, order))
+        return;
+    const Shader<T> shader(setup, order, c);
+    walkTriangle(setup, 0, canvas.rows, canvas.cols, [&](int y, int xBegin, int xEnd) {
+        shader(canvas.ptr<T>(y), y, xBegin, xBegin, xEnd);
+    });
+}
+
+template <template <typename> class Shader>
+void drawTriangle(InputOutputArray canvasArr, InputArray vertices, InputArray vcolors)
+{
+    checkCanvas(canvasArr, "canvas");
+    const std::vector<Point2d> v = readPoints(vertices, "vertices", 3);
+    const std::vector<Vec3d> c = readColors(vcolors, "vcolors", 3);
+    Mat canvas = canvasArr.getMat();
+    if (canvas.depth() == CV_8U)
+        drawTriangle<Shader, uchar>(canvas, v.data(), c.data());
+    else
+        drawTriangle<Shader, float>(canvas, v.data(), c.data());
+}
+
+}  // namespace
+
+void flats(InputOutputArray canvas, InputArray vertices, InputArray vcolors)
+{
+    drawTriangle<FlatShader>(canvas, vertices, vcolors);
+}
+
+void gouraud(InputOutputArray canvas, InputArray vertices, InputArray vcolors)
+{
+    drawTriangle<GouraudShader>(canvas, vertices, vcolors);
+}
+
+namespace {
+
+struct MeshData {
+    std::vector<Point2d> vertices;
+    std::vector<Vec3i> faces;
+    std::vector<Vec3d> colors;
+    std::vector<double> depth;
+};
+
+MeshData readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
+                  int shadeType)
+{
+    checkShadeType(shadeType);
+    MeshData mesh;
+    mesh.vertices = readPoints(verts2d, "verts2d", -1);
+    const int count = int(mesh.vertices.size());
+    mesh.faces = readFaces(faces, "faces", count);
+    mesh.colors = readColors(vcolors, "vcolors", count);
+    mesh.depth = readDepths(depth, "depth", count);
+    return mesh;
+}
+
+void drawMeshData(Mat& canvas, const MeshData& mesh, int shadeType)
+{
+    const std::vector<int> order = paintersOrder(mesh.faces, mesh.depth);
+    const bool flat = shadeType == SHADE_FLAT;
+    if (canvas.depth() == CV_8U) {
+        if (flat)
+            drawMeshFrontToBack<FlatShader<uchar>, uchar>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+        else
+            drawMeshFrontToBack<GouraudShader<uchar>, uchar>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+    } else {
+        if (flat)
+            drawMeshFrontToBack<FlatShader<float>, float>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+        else
+            drawMeshFrontToBack<GouraudShader<float>, float>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+    }
+}
+
+}  // namespace
+
+void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces, InputArray vcolors,
+              InputArray depth, int shadeType)
+{
+    checkCanvas(canvas, "canvas");
+    const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
+    Mat img = canvas.getMat();
+    drawMeshData(img, mesh, shadeType);
+}
+
+void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
+            OutputArray img, int shadeType, Size size, const Scalar& background)
+{
+    if (size.width <= 0 || size.height <= 0)
+        CV_Error(Error::StsBadSize, format("size: expected positive width and height, got %dx%d",
+                                           size.width, size.height));
+    const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
+    img.create(size, CV_32FC3);
+    Mat canvas = img.getMat();
+    canvas.setTo(background);
+    drawMeshData(canvas, mesh, shadeType);
+}
+
+}  // namespace shading
+}  // namespace cv
