@@ -1,0 +1,302 @@
+// drawMesh() and render(): painter's order (worked by hand), ties, skipped faces, exactly-once
+// coverage of closed meshes, equality with drawing the faces one by one, thread-count
+// independence, input forms, canvases and ROIs.
+#include "test_common.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/shading.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+using namespace cv;
+using shading_test::maxAbsDiff;
+using shading_test::writtenMask;
+
+namespace {
+
+// Three nested right triangles at the origin, one flat colour each (3 vertices per face).
+struct Layers {
+    std::vector<Point2f> verts;
+    std::vector<Vec3i> faces;
+    std::vector<Vec3f> colors;
+    std::vector<float> depth;
+
+    void add(float size, Vec3f color, float d)
+    {
+        const int base = int(verts.size());
+        for (const Point2f& p : {Point2f(0, 0), Point2f(size, 0), Point2f(0, size)}) {
+            verts.push_back(p);
+            colors.push_back(color);
+            depth.push_back(d);
+        }
+        faces.push_back(Vec3i(base, base + 1, base + 2));
+    }
+};
+
+const Vec3f kRed(1, 0, 0), kGreen(0, 1, 0), kBlue(0, 0, 1), kWhite(1, 1, 1);
+
+// A grid of (n x n) cells over [-2, size + 2]^2, each split along a random diagonal, interior
+// vertices jittered by up to 0.2 cell (quads stay convex) (optionally snapped to whole pixels): a closed mesh that
+// covers every canvas sample.
+void makeGridMesh(Size size, int n, bool integerVertices, uint64 seed,
+                  std::vector<Point2d>& verts, std::vector<Vec3i>& faces)
+{
+    RNG rng(seed);
+    verts.clear();
+    faces.clear();
+    const double x0 = -2, y0 = -2, sx = (size.width + 4.0) / n, sy = (size.height + 4.0) / n;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            Point2d p(x0 + i * sx, y0 + j * sy);
+            if (i > 0 && i < n && j > 0 && j < n)
+                p += Point2d(rng.uniform(-0.2, 0.2) * sx, rng.uniform(-0.2, 0.2) * sy);
+            if (integerVertices)
+                p = Point2d(std::round(p.x), std::round(p.y));
+            verts.push_back(p);
+        }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            if (rng.uniform(0, 2))
+                faces.push_back({a, b, d}), faces.push_back({a, d, c});
+            else
+                faces.push_back({a, b, c}), faces.push_back({b, d, c});
+        }
+}
+
+std::vector<Vec3f> randomColors(size_t n, uint64 seed)
+{
+    RNG rng(seed);
+    std::vector<Vec3f> c(n);
+    for (Vec3f& v : c)
+        v = Vec3f(rng.uniform(0.f, 1.f), rng.uniform(0.f, 1.f), rng.uniform(0.f, 1.f));
+    return c;
+}
+
+}  // namespace
+
+// Faces given as A (big, red, depth 5), B (medium, green, depth 3), C (small, blue, depth 9).
+// Painter's order: C, A, B. So B shows wherever it covers, A elsewhere inside it, C nowhere.
+TEST(ShadingMesh, PaintersOrderByHand)
+{
+    Layers m;
+    m.add(10, kRed, 5);
+    m.add(6, kGreen, 3);
+    m.add(3, kBlue, 9);
+    Mat img;
+    shading::render(m.verts, m.faces, m.colors, m.depth, img, shading::SHADE_FLAT, Size(12, 12));
+    ASSERT_EQ(img.type(), CV_32FC3);
+    ASSERT_EQ(img.size(), Size(12, 12));
+    EXPECT_EQ(img.at<Vec3f>(0, 0), kGreen);
+    EXPECT_EQ(img.at<Vec3f>(1, 1), kGreen);
+    EXPECT_EQ(img.at<Vec3f>(5, 0), kGreen);  // x + y = 5 < 6
+    EXPECT_EQ(img.at<Vec3f>(6, 0), kRed);    // x + y = 6: B's right edge, A's interior
+    EXPECT_EQ(img.at<Vec3f>(1, 7), kRed);
+    EXPECT_EQ(img.at<Vec3f>(5, 5), kWhite);  // x + y = 10: A's right edge
+    EXPECT_EQ(img.at<Vec3f>(11, 11), kWhite);
+}
+
+// Equal mean depths keep the order of `faces`: the later face is drawn last and shows.
+TEST(ShadingMesh, DepthTiesKeepFaceOrder)
+{
+    Layers m;
+    m.add(8, kRed, 2);
+    m.add(8, kGreen, 2);
+    Mat img;
+    shading::render(m.verts, m.faces, m.colors, m.depth, img, shading::SHADE_FLAT, Size(10, 10));
+    EXPECT_EQ(img.at<Vec3f>(1, 1), kGreen);
+    // Mean over different vertex depths: (1 + 2 + 3) / 3 == (2 + 2 + 2) / 3.
+    m.depth[3] = 1, m.depth[4] = 2, m.depth[5] = 3;
+    std::swap(m.faces[0], m.faces[1]);
+    shading::render(m.verts, m.faces, m.colors, m.depth, img, shading::SHADE_FLAT, Size(10, 10));
+    EXPECT_EQ(img.at<Vec3f>(1, 1), kRed);
+}
+
+TEST(ShadingMesh, EmptyDepthDrawsInFaceOrder)
+{
+    Layers m;
+    m.add(8, kRed, 1);
+    m.add(4, kGreen, 9);
+    Mat img;
+    shading::render(m.verts, m.faces, m.colors, noArray(), img, shading::SHADE_FLAT, Size(10, 10));
+    EXPECT_EQ(img.at<Vec3f>(1, 1), kGreen);
+    EXPECT_EQ(img.at<Vec3f>(1, 5), kRed);
+}
+
+TEST(ShadingMesh, NaNDepthOrVertexSkipsOnlyThatFace)
+{
+    Layers m;
+    m.add(8, kRed, 2);
+    m.add(4, kGreen, 1);
+    m.depth[4] = std::numeric_limits<float>::quiet_NaN();
+    Mat img;
+    shading::render(m.verts, m.faces, m.colors, m.depth, img, shading::SHADE_FLAT, Size(10, 10));
+    EXPECT_EQ(img.at<Vec3f>(1, 1), kRed);
+    m.depth[4] = 1;
+    m.verts[5].y = std::numeric_limits<float>::infinity();
+    shading::render(m.verts, m.faces, m.colors, m.depth, img, shading::SHADE_FLAT, Size(10, 10));
+    EXPECT_EQ(img.at<Vec3f>(1, 1), kRed);
+}
+
+TEST(ShadingMesh, RenderFillsBackgroundAndSize)
+{
+    Mat img;
+    shading::render(std::vector<Point2f>(), std::vector<Vec3i>(), std::vector<Vec3f>(),
+                    std::vector<float>(), img, shading::SHADE_GOURAUD, Size(7, 5),
+                    Scalar(0.25, 0.5, 0.75));
+    ASSERT_EQ(img.size(), Size(7, 5));
+    ASSERT_EQ(img.type(), CV_32FC3);
+    EXPECT_EQ(countNonZero(writtenMask(img, Mat(5, 7, CV_32FC3, Scalar(0.25, 0.5, 0.75)))), 0);
+    Mat def;
+    shading::render(std::vector<Point2f>(), std::vector<Vec3i>(), std::vector<Vec3f>(), noArray(), def);
+    EXPECT_EQ(def.size(), Size(512, 512));
+    EXPECT_EQ(countNonZero(writtenMask(def, Mat(512, 512, CV_32FC3, Scalar::all(1)))), 0);
+}
+
+// Every sample of a closed mesh is covered exactly once: no gaps, no double-drawn seams.
+TEST(ShadingMesh, ClosedMeshCoversEverySampleExactlyOnce)
+{
+    const Size size(61, 47);
+    for (int variant = 0; variant < 4; variant++) {
+        std::vector<Point2d> verts;
+        std::vector<Vec3i> faces;
+        makeGridMesh(size, 9 + variant * 4, variant % 2 == 1, 100 + variant, verts, faces);
+        Mat count(size, CV_32S, Scalar(0));
+        for (const Vec3i& f : faces) {
+            Mat canvas(size, CV_8UC3, Scalar::all(0));
+            shading::flats(canvas, std::vector<Point2d>{verts[f[0]], verts[f[1]], verts[f[2]]},
+                           std::vector<Vec3f>(3, Vec3f(1, 1, 1)));
+            Mat one;
+            extractChannel(canvas, one, 0);
+            Mat one32;
+            one.convertTo(one32, CV_32S);
+            count += one32;
+        }
+        double lo, hi;
+        minMaxLoc(count, &lo, &hi);
+        EXPECT_EQ(lo, 1.0) << "variant " << variant << ": a sample is not covered";
+        EXPECT_EQ(hi, 1.0) << "variant " << variant << ": a sample is covered twice";
+    }
+}
+
+// drawMesh equals drawing the faces one at a time in painter's order (the order computed here
+// independently), for any thread count, flat and Gouraud, float and 8-bit canvases.
+TEST(ShadingMesh, EqualsSequentialPaintersForAnyThreadCount)
+{
+    const Size size(96, 80);
+    RNG rng(7);
+    const int L = 600;
+    std::vector<Point2d> verts(L);
+    std::vector<double> depth(L);
+    for (int i = 0; i < L; i++) {
+        verts[i] = Point2d(rng.uniform(-20.0, 116.0), rng.uniform(-20.0, 100.0));
+        depth[i] = std::floor(rng.uniform(0.0, 8.0));  // many ties
+    }
+    std::vector<Vec3i> faces;
+    for (int k = 0; k < 900; k++) {
+        const int a = rng.uniform(0, L);
+        // Mostly small faces: neighbours of a in a random direction.
+        int b = rng.uniform(0, L), c = rng.uniform(0, L);
+        if (k % 3) {
+            verts.push_back(verts[a] + Point2d(rng.uniform(-9.0, 9.0), rng.uniform(-9.0, 9.0)));
+            verts.push_back(verts[a] + Point2d(rng.uniform(-9.0, 9.0), rng.uniform(-9.0, 9.0)));
+            depth.push_back(depth[a]);
+            depth.push_back(std::floor(rng.uniform(0.0, 8.0)));
+            b = int(verts.size()) - 2, c = int(verts.size()) - 1;
+        }
+        faces.push_back({a, b, c});
+    }
+    const std::vector<Vec3f> colors = randomColors(verts.size(), 8);
+
+    std::vector<double> mean(faces.size());
+    for (size_t i = 0; i < faces.size(); i++)
+        mean[i] = (depth[faces[i][0]] + depth[faces[i][1]] + depth[faces[i][2]]) / 3.0;
+    std::vector<int> order(faces.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return mean[a] > mean[b]; });
+
+    const int savedThreads = getNumThreads();
+    for (int type : {CV_32FC3, CV_8UC3}) {
+        const double scale = type == CV_8UC3 ? 255.0 : 1.0;
+        std::vector<Vec3d> scaled(colors.size());
+        for (size_t i = 0; i < colors.size(); i++)
+            scaled[i] = Vec3d(colors[i]) * scale;
+        for (int shade : {shading::SHADE_FLAT, shading::SHADE_GOURAUD}) {
+            Mat expected(size, type, Scalar::all(3));
+            for (int f : order) {
+                const std::vector<Point2d> v = {verts[faces[f][0]], verts[faces[f][1]], verts[faces[f][2]]};
+                const std::vector<Vec3d> c = {scaled[faces[f][0]], scaled[faces[f][1]], scaled[faces[f][2]]};
+                if (shade == shading::SHADE_FLAT)
+                    shading::flats(expected, v, c);
+                else
+                    shading::gouraud(expected, v, c);
+            }
+            for (int threads : {1, 2, 8}) {
+                setNumThreads(threads);
+                Mat canvas(size, type, Scalar::all(3));
+                shading::drawMesh(canvas, verts, faces, scaled, depth, shade);
+                EXPECT_EQ(maxAbsDiff(canvas, expected), 0.0)
+                    << "type " << type << " shade " << shade << " threads " << threads;
+            }
+        }
+    }
+    setNumThreads(savedThreads);
+}
+
+TEST(ShadingMesh, DrawMeshIntoRoiTouchesOnlyTheRoi)
+{
+    std::vector<Point2d> verts;
+    std::vector<Vec3i> faces;
+    makeGridMesh(Size(20, 15), 6, false, 3, verts, faces);
+    const std::vector<Vec3f> colors = randomColors(verts.size(), 4);
+    Mat big(40, 50, CV_32FC3, Scalar::all(-1)), before = big.clone();
+    Mat roi = big(Rect(10, 12, 20, 15));
+    shading::drawMesh(roi, verts, faces, colors, noArray());
+    const Mat written = writtenMask(big, before);
+    EXPECT_EQ(countNonZero(written), 20 * 15);
+    EXPECT_EQ(countNonZero(written(Rect(10, 12, 20, 15))), 20 * 15);
+    // Same pixels as drawing into a standalone canvas of the ROI's size.
+    Mat alone(15, 20, CV_32FC3, Scalar::all(-1));
+    shading::drawMesh(alone, verts, faces, colors, noArray());
+    EXPECT_EQ(maxAbsDiff(alone, roi), 0.0);
+}
+
+TEST(ShadingMesh, AllInputFormsAgree)
+{
+    Layers m;
+    m.add(9, kRed, 5);
+    m.add(6, kGreen, 3);
+    m.add(3, kBlue, 9);
+    Mat expected;
+    shading::render(m.verts, m.faces, m.colors, m.depth, expected, shading::SHADE_GOURAUD, Size(12, 12));
+
+    const Mat verts32f = Mat(m.verts).reshape(1).clone();
+    Mat verts64f, verts32s, faces32s = Mat(m.faces).reshape(1).clone(), faces64f, faces32f;
+    verts32f.convertTo(verts64f, CV_64F);
+    verts32f.convertTo(verts32s, CV_32S);
+    faces32s.convertTo(faces64f, CV_64F);
+    faces32s.convertTo(faces32f, CV_32F);
+    const Mat colors64f = [&] { Mat c; Mat(m.colors).reshape(1).convertTo(c, CV_64F); return c; }();
+    const Mat depthRow = Mat(m.depth).reshape(1, 1).clone();
+    const std::vector<double> depth64(m.depth.begin(), m.depth.end());
+    std::vector<Point2d> verts2d(m.verts.begin(), m.verts.end());
+
+    const std::vector<_InputArray> vertForms = {_InputArray(verts32f), _InputArray(verts64f),
+                                                _InputArray(verts32s), _InputArray(verts2d)};
+    const std::vector<_InputArray> faceForms = {_InputArray(faces32s), _InputArray(faces64f),
+                                                _InputArray(faces32f), _InputArray(m.faces)};
+    const std::vector<_InputArray> depthForms = {_InputArray(depthRow), _InputArray(depth64),
+                                                 _InputArray(m.depth)};
+    for (size_t i = 0; i < vertForms.size(); i++)
+        for (size_t j = 0; j < faceForms.size(); j++)
+            for (size_t k = 0; k < depthForms.size(); k++) {
+                Mat img;
+                shading::render(vertForms[i], faceForms[j], colors64f, depthForms[k], img,
+                                shading::SHADE_GOURAUD, Size(12, 12));
+                EXPECT_EQ(maxAbsDiff(img, expected), 0.0) << i << "," << j << "," << k;
+            }
+}
