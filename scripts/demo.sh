@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Quick start, part 1: install what is missing, build, and run the samples. PNGs go to out/;
+# windows open too when a display is available.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$(nproc)"
+mkdir -p out
+./build/samples/demo_flat --out out/demo_flat.png "$@"
+./build/samples/demo_gouraud --out out/demo_gouraud.png "$@"
+./build/samples/fillpoly_coverage --out out/fillpoly_coverage.png "$@"
