@@ -31,13 +31,25 @@ struct FixedPoint {
     int64_t x, y;
 };
 
+//! Coordinates below 2^28 subpixels (2^20 px) keep every walker quantity within 64 bits.
+constexpr int64_t kNarrowLimit = int64_t(1) << 28;
+
+//! std::llround (halves away from zero) without the library call; exact, since v - trunc(v)
+//! is exact in binary floating point. |v| must be below 2^62.
+inline int64_t roundHalfAway(double v)
+{
+    const double t = std::trunc(v);
+    const double frac = v - t;
+    return int64_t(t) + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
+}
+
 //! Snaps (x, y) to the subpixel grid; false for NaN, infinite or out-of-range coordinates.
 inline bool snapToGrid(double x, double y, FixedPoint& p)
 {
     if (!(std::abs(x) <= kMaxCoordinate && std::abs(y) <= kMaxCoordinate))
         return false;
-    p.x = std::llround(x * double(kSubpixelOne));
-    p.y = std::llround(y * double(kSubpixelOne));
+    p.x = roundHalfAway(x * double(kSubpixelOne));
+    p.y = roundHalfAway(y * double(kSubpixelOne));
     return true;
 }
 
@@ -68,15 +80,23 @@ struct EdgeWalker {
     int64_t stepRem;  //!< step * den - increment, in [0, den)
     int64_t den;
 
-    //! Positions the walker at pixel row `row` for the edge a -> b (a.y < b.y).
-    void start(const FixedPoint& a, const FixedPoint& b, int64_t row)
+    /** Positions the walker at pixel row `row` for the edge a -> b (a.y < b.y). `narrow`: all
+    coordinates and the row are below kNarrowLimit subpixels, so 64 bits suffice (the common
+    case; 128-bit division is several times slower). */
+    void start(const FixedPoint& a, const FixedPoint& b, int64_t row, bool narrow)
     {
         const int64_t dy = b.y - a.y, dx = b.x - a.x;
         den = dy << kSubpixelBits;
-        const Int128 n = Int128(a.x) * dy + Int128((row << kSubpixelBits) - a.y) * dx;
-        const Int128 q = ceilDiv<Int128>(n, den);
-        x = int64_t(q);
-        rem = int64_t(q * den - n);
+        if (narrow) {
+            const int64_t n = a.x * dy + ((row << kSubpixelBits) - a.y) * dx;
+            x = ceilDiv<int64_t>(n, den);
+            rem = x * den - n;
+        } else {
+            const Int128 n = Int128(a.x) * dy + Int128((row << kSubpixelBits) - a.y) * dx;
+            const Int128 q = ceilDiv<Int128>(n, den);
+            x = int64_t(q);
+            rem = int64_t(q * den - n);
+        }
         const int64_t inc = dx << kSubpixelBits;
         step = ceilDiv<int64_t>(inc, den);
         stepRem = step * den - inc;
@@ -104,6 +124,7 @@ struct TriangleSetup {
     FixedPoint top, mid, bottom;
     int rowBegin, rowMid, rowEnd;  //!< clipped to [0, height]
     bool longEdgeLeft;             //!< the top-bottom edge bounds spans on the left
+    bool narrow;                   //!< walkers may use 64-bit arithmetic (see EdgeWalker)
 };
 
 //! Pixel row bound ceil(y / 256) clamped to [0, limit].
@@ -154,6 +175,8 @@ inline bool setupTriangle(const Point2d v[3], Size size, TriangleSetup& t, int o
     t.rowMid = clampedRow(p[1].y, size.height);
     t.rowEnd = clampedRow(p[2].y, size.height);
     t.longEdgeLeft = cross < 0;
+    const int64_t extent = std::max({xMax, -xMin, p[2].y, -p[0].y});
+    t.narrow = extent < kNarrowLimit && (int64_t(size.height) << kSubpixelBits) < kNarrowLimit;
     return t.rowBegin < t.rowEnd;
 }
 
@@ -168,7 +191,7 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
     if (begin >= end)
         return;
     EdgeWalker longEdge, shortEdge;
-    longEdge.start(t.top, t.bottom, begin);
+    longEdge.start(t.top, t.bottom, begin, t.narrow);
     auto emitRows = [&](int r0, int r1) {
         const EdgeWalker& left = t.longEdgeLeft ? longEdge : shortEdge;
         const EdgeWalker& right = t.longEdgeLeft ? shortEdge : longEdge;
@@ -183,11 +206,11 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
     };
     const int mid = std::min(std::max(t.rowMid, begin), end);
     if (begin < mid) {
-        shortEdge.start(t.top, t.mid, begin);
+        shortEdge.start(t.top, t.mid, begin, t.narrow);
         emitRows(begin, mid);
     }
     if (mid < end) {
-        shortEdge.start(t.mid, t.bottom, mid);
+        shortEdge.start(t.mid, t.bottom, mid, t.narrow);
         emitRows(mid, end);
     }
 }

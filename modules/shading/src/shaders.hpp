@@ -25,6 +25,7 @@ template <typename T>
 struct FlatShader {
     T color[3];
 
+    FlatShader() = default;
     FlatShader(const TriangleSetup&, const int*, const Vec3d c[3])
     {
         for (int k = 0; k < 3; k++)
@@ -54,6 +55,7 @@ struct GouraudShader {
     double x0, y0;
     double c0[3], gx[3], gy[3];
 
+    GouraudShader() = default;
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d c[3])
     {
         const FixedPoint p[3] = {t.top, t.mid, t.bottom};
