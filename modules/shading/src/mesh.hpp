@@ -21,9 +21,23 @@ namespace cv {
 namespace shading {
 namespace detail {
 
+//! A key whose ascending unsigned order is the descending order of `v` (v not NaN).
+inline uint64_t descendingKey(double v)
+{
+    if (v == 0)
+        v = 0.0;  // -0 and +0 compare equal, so they must share a key
+    uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    const uint64_t ascending = (bits >> 63) ? ~bits : bits | (uint64_t(1) << 63);
+    return ~ascending;
+}
+
 /** Face indices in painter's (drawing) order: largest mean vertex depth first, ties in the order
 of `faces`. Empty `depth` keeps the order of `faces`. A face whose mean depth is NaN is left
-out: it has no place in the order and is not drawn. */
+out: it has no place in the order and is not drawn.
+
+An LSD radix sort on the depth keys: stable by construction, linear in the face count, and it
+skips the byte positions all keys share (typically most of them). */
 inline std::vector<int> paintersOrder(const std::vector<Vec3i>& faces,
                                       const std::vector<double>& depth)
 {
@@ -34,31 +48,79 @@ inline std::vector<int> paintersOrder(const std::vector<Vec3i>& faces,
             order.push_back(i);
         return order;
     }
-    // Sorting (key, index) pairs with the index as tie-break is a stable sort on the key, and
-    // much faster than std::stable_sort through an index indirection.
-    std::vector<std::pair<double, int>> keyed;
+    std::vector<std::pair<uint64_t, int>> keyed, scratch;
     keyed.reserve(faces.size());
     for (int i = 0; i < int(faces.size()); i++) {
         const Vec3i& f = faces[i];
         const double mean = (depth[f[0]] + depth[f[1]] + depth[f[2]]) / 3.0;
         if (!std::isnan(mean))
-            keyed.emplace_back(mean, i);
+            keyed.emplace_back(descendingKey(mean), i);
     }
-    std::sort(keyed.begin(), keyed.end(), [](const std::pair<double, int>& a,
-                                             const std::pair<double, int>& b) {
-        return a.first > b.first || (a.first == b.first && a.second < b.second);
-    });
+    scratch.resize(keyed.size());
+    for (int shift = 0; shift < 64; shift += 8) {
+        size_t offset[257] = {};
+        for (const auto& k : keyed)
+            offset[((k.first >> shift) & 0xff) + 1]++;
+        if (std::find(offset + 1, offset + 257, keyed.size()) != offset + 257)
+            continue;  // every key has the same byte here
+        for (int b = 0; b < 256; b++)
+            offset[b + 1] += offset[b];
+        for (const auto& k : keyed)
+            scratch[offset[(k.first >> shift) & 0xff]++] = k;
+        keyed.swap(scratch);
+    }
     for (const auto& k : keyed)
         order.push_back(k.second);
     return order;
 }
+
+/** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
+class CoverageBits {
+public:
+    CoverageBits(int rows, int width) : wordsPerRow_((width + 63) / 64), bits_(size_t(rows) * wordsPerRow_) {}
+
+    void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
+
+    /** Marks [xBegin, xEnd) of `row` final and calls run(a, b) for every maximal run [a, b) of it
+    that was not final before (split at 64-pixel word boundaries). Returns the pixels newly
+    marked. */
+    template <typename RunFn>
+    int claim(int row, int xBegin, int xEnd, RunFn&& run)
+    {
+        uint64_t* words = bits_.data() + size_t(row) * wordsPerRow_;
+        int claimed = 0;
+        for (int x = xBegin; x < xEnd;) {
+            const int word = x >> 6, first = x & 63;
+            const int count = std::min(xEnd - x, 64 - first);
+            const uint64_t span = (count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1) << first;
+            uint64_t fresh = span & ~words[word];
+            words[word] |= span;
+            while (fresh) {
+                const int a = ctz(fresh);
+                const uint64_t rest = ~(fresh >> a);  // zero bits mark the run
+                const int len = rest == 0 ? 64 - a : ctz(rest);
+                run(word * 64 + a, word * 64 + a + len);
+                claimed += len;
+                fresh &= len + a >= 64 ? 0 : ~uint64_t(0) << (a + len);
+            }
+            x += count;
+        }
+        return claimed;
+    }
+
+private:
+    static int ctz(uint64_t v) { return __builtin_ctzll(v); }  // v != 0
+
+    int wordsPerRow_;
+    std::vector<uint64_t> bits_;
+};
 
 //! Rows per band: small enough to balance threads and keep a band's canvas rows in cache.
 constexpr int kBandRows = 16;
 
 /** Draws faces in `drawOrder` (back to front) as if one after the other, writing each pixel once.
 
-Triangles are visited front to back; a per-band coverage mask keeps only the first (frontmost)
+Triangles are visited front to back; a per-band coverage bit mask keeps only the first (frontmost)
 write of every pixel, which is exactly the pixel the painter's algorithm leaves visible. Rows
 and bands whose pixels are all final stop consuming triangles. */
 template <class Shader, typename T>
@@ -110,11 +172,11 @@ void drawMeshFrontToBack(Mat& canvas, const std::vector<Point2d>& vertices,
 
     const int width = size.width;
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
-        std::vector<uchar> mask(size_t(kBandRows) * width);
+        CoverageBits coverage(kBandRows, width);
         int rowLeft[kBandRows];
         for (int band = range.start; band < range.end; band++) {
             const int y0 = band * kBandRows, y1 = std::min(size.height, y0 + kBandRows);
-            std::fill(mask.begin(), mask.end(), uchar(0));
+            coverage.clear();
             std::fill(rowLeft, rowLeft + kBandRows, width);
             int64_t bandLeft = int64_t(y1 - y0) * width;
             for (int k = bandStart[band]; k < bandStart[band + 1] && bandLeft > 0; k++) {
@@ -124,22 +186,12 @@ void drawMeshFrontToBack(Mat& canvas, const std::vector<Point2d>& vertices,
                     int& left = rowLeft[y - y0];
                     if (left == 0)
                         return;
-                    uchar* m = mask.data() + size_t(y - y0) * width;
                     T* row = canvas.ptr<T>(y);
-                    // Shade each run of not-yet-final pixels, then mark it final.
-                    for (int x = xBegin; x < xEnd;) {
-                        while (x < xEnd && m[x])
-                            x++;
-                        const int runBegin = x;
-                        while (x < xEnd && !m[x])
-                            x++;
-                        if (runBegin < x) {
-                            shader(row, y, xBegin, runBegin, x);
-                            std::memset(m + runBegin, 1, size_t(x - runBegin));
-                            left -= x - runBegin;
-                            bandLeft -= x - runBegin;
-                        }
-                    }
+                    const int claimed = coverage.claim(y - y0, xBegin, xEnd, [&](int a, int b) {
+                        shader(row, y, xBegin, a, b);
+                    });
+                    left -= claimed;
+                    bandLeft -= claimed;
                 });
             }
         }

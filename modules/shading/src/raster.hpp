@@ -38,9 +38,9 @@ constexpr int64_t kNarrowLimit = int64_t(1) << 28;
 //! is exact in binary floating point. |v| must be below 2^62.
 inline int64_t roundHalfAway(double v)
 {
-    const double t = std::trunc(v);
-    const double frac = v - t;
-    return int64_t(t) + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
+    const int64_t t = int64_t(v);  // truncates toward zero
+    const double frac = v - double(t);
+    return t + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
 }
 
 //! Snaps (x, y) to the subpixel grid; false for NaN, infinite or out-of-range coordinates.
@@ -159,14 +159,24 @@ inline bool setupTriangle(const Point2d v[3], Size size, TriangleSetup& t, int o
     sortPair(0, 1);
     sortPair(1, 2);
     sortPair(0, 1);
-    // Sign of the middle vertex against the long edge: < 0 puts it to the right.
-    const Int128 cross = Int128(p[2].x - p[0].x) * (p[1].y - p[0].y) -
-                         Int128(p[2].y - p[0].y) * (p[1].x - p[0].x);
-    if (cross == 0)
-        return false;
     const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
     const int64_t xMax = std::max({p[0].x, p[1].x, p[2].x});
     if (xMax < 0 || xMin > (int64_t(size.width) << kSubpixelBits))
+        return false;
+    const int64_t extent = std::max({xMax, -xMin, p[2].y, -p[0].y});
+    t.narrow = extent < kNarrowLimit && (int64_t(size.height) << kSubpixelBits) < kNarrowLimit;
+    // Sign of the middle vertex against the long edge: < 0 puts it to the right.
+    int sign;
+    if (t.narrow) {
+        const int64_t cross = (p[2].x - p[0].x) * (p[1].y - p[0].y) -
+                              (p[2].y - p[0].y) * (p[1].x - p[0].x);
+        sign = (cross > 0) - (cross < 0);
+    } else {
+        const Int128 cross = Int128(p[2].x - p[0].x) * (p[1].y - p[0].y) -
+                             Int128(p[2].y - p[0].y) * (p[1].x - p[0].x);
+        sign = (cross > 0) - (cross < 0);
+    }
+    if (sign == 0)
         return false;
     t.top = p[0];
     t.mid = p[1];
@@ -174,9 +184,7 @@ inline bool setupTriangle(const Point2d v[3], Size size, TriangleSetup& t, int o
     t.rowBegin = clampedRow(p[0].y, size.height);
     t.rowMid = clampedRow(p[1].y, size.height);
     t.rowEnd = clampedRow(p[2].y, size.height);
-    t.longEdgeLeft = cross < 0;
-    const int64_t extent = std::max({xMax, -xMin, p[2].y, -p[0].y});
-    t.narrow = extent < kNarrowLimit && (int64_t(size.height) << kSubpixelBits) < kNarrowLimit;
+    t.longEdgeLeft = sign < 0;
     return t.rowBegin < t.rowEnd;
 }
 
