@@ -39,14 +39,32 @@ constexpr int kSubpixelBits = 8;
 on every call (they would change every frame) into buffers kept between calls. */
 class Painter {
 public:
-    /** Clears `canvas` to white, then calls `draw(face, v)` for every face far to near (stable
-    sort by mean vertex depth, largest first: the order cv::shading::render uses), `v` being the
-    face's vertices in 1/256 px units. */
+    /** Clears `canvas` to white, then calls `draw(face, v)` for every face in sort() order, `v`
+    being the face's vertices in 1/256 px units. */
     template <class Draw>
     void paint(const Scene& scene, cv::Mat& canvas, Draw&& draw)
     {
         clearCanvas(canvas, scene.size);
         const MeshScene& s = scene.mesh;
+        sort(s);
+        const int vertexCount = s.verts2d.rows;
+        snapped_.resize(static_cast<size_t>(vertexCount));
+        for (int v = 0; v < vertexCount; ++v) {
+            const cv::Vec2f& p = s.verts2d.at<cv::Vec2f>(v);
+            snapped_[v] = cv::Point(static_cast<int>(std::lround(p[0] * (1 << kSubpixelBits))),
+                                    static_cast<int>(std::lround(p[1] * (1 << kSubpixelBits))));
+        }
+        for (int i : order_) {
+            const cv::Vec3i& f = s.faces.at<cv::Vec3i>(i);
+            const cv::Point v[3] = {snapped_[f[0]], snapped_[f[1]], snapped_[f[2]]};
+            draw(f, v);
+        }
+    }
+
+    /** Face indices far to near: stable sort by mean vertex depth, largest first (ties keep
+    their order in `faces`), the order cv::shading::render uses. */
+    const std::vector<int>& sort(const MeshScene& s)
+    {
         const int faceCount = s.faces.rows;
         meanDepth_.resize(static_cast<size_t>(faceCount));
         order_.resize(static_cast<size_t>(faceCount));
@@ -58,20 +76,7 @@ public:
         }
         std::stable_sort(order_.begin(), order_.end(),
                          [this](int a, int b) { return meanDepth_[a] > meanDepth_[b]; });
-
-        const int vertexCount = s.verts2d.rows;
-        snapped_.resize(static_cast<size_t>(vertexCount));
-        for (int v = 0; v < vertexCount; ++v) {
-            const cv::Vec2f& p = s.verts2d.at<cv::Vec2f>(v);
-            snapped_[v] = cv::Point(static_cast<int>(std::lround(p[0] * (1 << kSubpixelBits))),
-                                    static_cast<int>(std::lround(p[1] * (1 << kSubpixelBits))));
-        }
-
-        for (int i : order_) {
-            const cv::Vec3i& f = s.faces.at<cv::Vec3i>(i);
-            const cv::Point v[3] = {snapped_[f[0]], snapped_[f[1]], snapped_[f[2]]};
-            draw(f, v);
-        }
+        return order_;
     }
 
 private:

@@ -31,7 +31,8 @@ struct FixedPoint {
     int64_t x, y;
 };
 
-//! Coordinates below 2^28 subpixels (2^20 px) keep every walker quantity within 64 bits.
+//! Coordinates and canvas sizes below 2^28 subpixels (2^20 px) keep every walker and edge
+//! function quantity within 64 bits.
 constexpr int64_t kNarrowLimit = int64_t(1) << 28;
 
 //! std::llround (halves away from zero) without the library call; exact, since v - trunc(v)
@@ -86,18 +87,18 @@ struct EdgeWalker {
     void start(const FixedPoint& a, const FixedPoint& b, int64_t row, bool narrow)
     {
         const int64_t dy = b.y - a.y, dx = b.x - a.x;
-        den = dy << kSubpixelBits;
+        den = dy * kSubpixelOne;
         if (narrow) {
-            const int64_t n = a.x * dy + ((row << kSubpixelBits) - a.y) * dx;
+            const int64_t n = a.x * dy + (row * kSubpixelOne - a.y) * dx;
             x = ceilDiv<int64_t>(n, den);
             rem = x * den - n;
         } else {
-            const Int128 n = Int128(a.x) * dy + Int128((row << kSubpixelBits) - a.y) * dx;
+            const Int128 n = Int128(a.x) * dy + Int128(row * kSubpixelOne - a.y) * dx;
             const Int128 q = ceilDiv<Int128>(n, den);
             x = int64_t(q);
             rem = int64_t(q * den - n);
         }
-        const int64_t inc = dx << kSubpixelBits;
+        const int64_t inc = dx * kSubpixelOne;
         step = ceilDiv<int64_t>(inc, den);
         stepRem = step * den - inc;
     }
@@ -161,10 +162,11 @@ inline bool setupTriangle(const Point2d v[3], Size size, TriangleSetup& t, int o
     sortPair(0, 1);
     const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
     const int64_t xMax = std::max({p[0].x, p[1].x, p[2].x});
-    if (xMax < 0 || xMin > (int64_t(size.width) << kSubpixelBits))
+    if (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne)
         return false;
     const int64_t extent = std::max({xMax, -xMin, p[2].y, -p[0].y});
-    t.narrow = extent < kNarrowLimit && (int64_t(size.height) << kSubpixelBits) < kNarrowLimit;
+    const int64_t canvasExtent = int64_t(std::max(size.width, size.height)) * kSubpixelOne;
+    t.narrow = extent < kNarrowLimit && canvasExtent < kNarrowLimit;
     // Sign of the middle vertex against the long edge: < 0 puts it to the right.
     int sign;
     if (t.narrow) {

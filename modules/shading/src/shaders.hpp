@@ -46,48 +46,58 @@ struct FlatShader {
 /** Gouraud shading: the affine function of (x, y) through the three (snapped) vertices and their
 colours, which is what interpolating along the edges and then along the span gives.
 
-The plane is set up in double from the canonical vertex order; each span evaluates it in double
-at its first column, then steps in float. A pixel's value therefore depends only on the
-triangle and the span's start, never on what was drawn before (so masked and unmasked drawing,
-and any thread count, agree bit for bit). */
+Each span starts from exact barycentric weights (integer edge functions at the span's first
+sample, divided by the exact twice-area), so the value stays accurate even for needles with
+vertices near the 2^40 limit; along the span it steps by the x-gradient in float. A pixel's value
+depends only on the triangle and its span's start, never on what was drawn before: masked and
+unmasked drawing, and any thread count, agree bit for bit. */
 template <typename T>
 struct GouraudShader {
-    double x0, y0;
-    double c0[3], gx[3], gy[3];
+    FixedPoint p[3];   //!< canonical (top, middle, bottom) order
+    double color[3][3];  //!< color[vertex][channel]
+    double invArea2;   //!< 1 / twice the signed area, in subpixel units
+    float stepX[3];    //!< d(colour)/dx per pixel
+    bool narrow;
 
     GouraudShader() = default;
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d c[3])
     {
-        const FixedPoint p[3] = {t.top, t.mid, t.bottom};
-        const double s = 1.0 / double(kSubpixelOne);
-        x0 = double(p[0].x) * s;
-        y0 = double(p[0].y) * s;
-        const double d1x = double(p[1].x - p[0].x) * s, d1y = double(p[1].y - p[0].y) * s;
-        const double d2x = double(p[2].x - p[0].x) * s, d2y = double(p[2].y - p[0].y) * s;
-        // Exact twice-area, rounded once: it is never zero here (setup rejected those).
-        const Int128 area2 = Int128(p[1].x - p[0].x) * (p[2].y - p[0].y) -
-                             Int128(p[2].x - p[0].x) * (p[1].y - p[0].y);
-        const double invArea = double(kSubpixelOne * kSubpixelOne) / double(area2);
-        for (int k = 0; k < 3; k++) {
-            const double a = c[order[0]][k], b = c[order[1]][k], d = c[order[2]][k];
-            c0[k] = a;
-            gx[k] = ((b - a) * d2y - (d - a) * d1y) * invArea;
-            gy[k] = ((d - a) * d1x - (b - a) * d2x) * invArea;
-        }
+        p[0] = t.top, p[1] = t.mid, p[2] = t.bottom;
+        narrow = t.narrow;
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                color[i][k] = c[order[i]][k];
+        invArea2 = 1.0 / double(edgeValue(p[0], p[1], p[2]));
+        // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
+        const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,
+                              -double(p[0].y - p[2].y) * kSubpixelOne * invArea2,
+                              -double(p[1].y - p[0].y) * kSubpixelOne * invArea2};
+        for (int k = 0; k < 3; k++)
+            stepX[k] = float(dw[0] * color[0][k] + dw[1] * color[1][k] + dw[2] * color[2][k]);
+    }
+
+    //! Edge function of a -> b at q, exactly: (b - a) x (q - a).
+    Int128 edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q) const
+    {
+        if (narrow)
+            return Int128((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x));
+        return Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x);
     }
 
     void operator()(T* row, int y, int spanBegin, int xBegin, int xEnd) const
     {
-        float base[3], step[3];
-        for (int k = 0; k < 3; k++) {
-            base[k] = float(c0[k] + gx[k] * (spanBegin - x0) + gy[k] * (y - y0));
-            step[k] = float(gx[k]);
-        }
+        const FixedPoint q = {int64_t(spanBegin) * kSubpixelOne, int64_t(y) * kSubpixelOne};
+        const double w0 = double(edgeValue(p[1], p[2], q)) * invArea2;
+        const double w1 = double(edgeValue(p[2], p[0], q)) * invArea2;
+        const double w2 = double(edgeValue(p[0], p[1], q)) * invArea2;
+        float base[3];
+        for (int k = 0; k < 3; k++)
+            base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
         for (int x = xBegin; x < xEnd; x++) {
             const float i = float(x - spanBegin);
-            row[3 * x] = toChannel<T>(base[0] + step[0] * i);
-            row[3 * x + 1] = toChannel<T>(base[1] + step[1] * i);
-            row[3 * x + 2] = toChannel<T>(base[2] + step[2] * i);
+            row[3 * x] = toChannel<T>(base[0] + stepX[0] * i);
+            row[3 * x + 1] = toChannel<T>(base[1] + stepX[1] * i);
+            row[3 * x + 2] = toChannel<T>(base[2] + stepX[2] * i);
         }
     }
 };

@@ -1,0 +1,262 @@
+#!/usr/bin/env python3
+# This file is part of opencv_shading. License: Apache-2.0.
+"""Turns Google Benchmark JSON from opencv_shading_perf (and opencv_shading_perf_osmesa) into a
+Markdown report on stdout: the machine, a table of median times per scene and a table of ratios.
+With --plots DIR and matplotlib (Debian: python3-matplotlib, for /usr/bin/python3) it also writes
+DIR/perf_vs_triangles.png and DIR/perf_vs_canvas.png.
+
+usage: report.py RESULTS.json [MORE.json ...] [--plots DIR]
+
+Benchmark names are METHOD/SCENE[/SHADE]/threads:N[/real_time]. With repetitions the "median"
+aggregates are used; without, the median of the runs of each benchmark.
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import sys
+
+UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
+KINDS = ["grid", "sphere", "random", "demo"]  # table order within a canvas size
+
+
+def load(paths):
+    """Returns (contexts, times, counts): times[(method, scene, shade, threads)] = median ms,
+    counts[scene] = (triangles, pixels)."""
+    contexts, runs, counts = [], {}, {}
+    for path in paths:
+        with open(path) as f:
+            data = json.load(f)
+        contexts.append(data.get("context", {}))
+        for b in data.get("benchmarks", []):
+            if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
+                continue
+            parts = [p for p in b["run_name"].split("/") if p != "real_time"]
+            threads = next((int(p.split(":")[1]) for p in parts if p.startswith("threads:")), 1)
+            parts = [p for p in parts if not p.startswith("threads:")]
+            method, scene = parts[0], parts[1]
+            shade = parts[2] if len(parts) > 2 else None
+            ms = b["real_time"] * UNIT_MS[b.get("time_unit", "ns")]
+            runs.setdefault((method, scene, shade, threads), []).append(ms)
+            if "triangles" in b:
+                counts[scene] = (int(b["triangles"]), int(b["pixels"]))
+    times = {key: statistics.median(v) for key, v in runs.items()}
+    return contexts, times, counts
+
+
+def scene_order(scenes):
+    """Scenes by canvas size, then grid, sphere, random, demo."""
+    def key(name):
+        m = re.match(r"([a-z]+)(\d+)$", name)
+        kind, side = (m.group(1), int(m.group(2))) if m else (name, 0)
+        return (side, KINDS.index(kind) if kind in KINDS else len(KINDS), name)
+    return sorted(scenes, key=key)
+
+
+def fmt_ms(ms):
+    if ms is None:
+        return "–"
+    return f"{ms:.3g}" if ms < 100 else f"{ms:.0f}"
+
+
+def fmt_ratio(num, den):
+    return "–" if num is None or den is None else f"{num / den:.2f}x"
+
+
+class Results:
+    def __init__(self, contexts, times, counts):
+        self.contexts, self.times, self.counts = contexts, times, counts
+        self.scenes = scene_order({k[1] for k in times})
+        self.all_threads = max((k[3] for k in times if k[0] == "render"), default=1)
+
+    def get(self, method, scene, shade=None, threads=None):
+        """Median ms; threads None means the largest thread count measured for the method."""
+        found = [(k[3], t) for k, t in self.times.items()
+                 if k[0] == method and k[1] == scene and k[2] == shade
+                 and (threads is None or k[3] == threads)]
+        return max(found)[1] if found else None
+
+    def has(self, method):
+        return any(k[0] == method for k in self.times)
+
+    def llvmpipe_threads(self):
+        return max((k[3] for k in self.times if k[0] == "llvmpipe"), default=None)
+
+
+def machine_lines(res):
+    ctx = {}
+    for c in res.contexts:  # the first file's values win
+        for k, v in c.items():
+            ctx.setdefault(k, v)
+    lines = [f"- Machine: {ctx.get('cpu_model', '?')}, {ctx.get('num_cpus', '?')} CPUs at "
+             f"{ctx.get('mhz_per_cpu', '?')} MHz (host {ctx.get('host_name', '?')}, "
+             f"load average {', '.join(f'{x:.2f}' for x in ctx.get('load_avg', []))} at start), "
+             f"{ctx.get('date', '?')}",
+             f"- OpenCV {ctx.get('opencv_version', '?')}, parallel framework "
+             f"{ctx.get('opencv_parallel_framework', '?')}; render \"all threads\" = "
+             f"{res.all_threads} threads"]
+    if ctx.get("llvmpipe_threads"):
+        lines.append(f"- llvmpipe (OSMesa) with {ctx['llvmpipe_threads']} threads")
+    checks = sorted((k, v) for k, v in ctx.items() if k.startswith("check_"))
+    for k, v in checks:
+        lines.append(f"- {k}: {v}")
+    lines.append("- Times are medians of the repetitions, in milliseconds, wall clock; every "
+                 "method clears a float RGB canvas to white and draws all triangles in "
+                 "painter's order")
+    return lines
+
+
+def time_table(res):
+    n = res.all_threads
+    cols = [("render flat 1 thr", "render", "flat", 1),
+            (f"render flat {n} thr", "render", "flat", n),
+            ("render Gouraud 1 thr", "render", "gouraud", 1),
+            (f"render Gouraud {n} thr", "render", "gouraud", n),
+            ("plain flat", "plain", "flat", 1),
+            ("plain Gouraud", "plain", "gouraud", 1),
+            ("fillConvexPoly", "fillConvexPoly", "flat", 1)]
+    if res.has("llvmpipe"):
+        lt = res.llvmpipe_threads()
+        cols += [(f"llvmpipe flat {lt} thr", "llvmpipe", "flat", lt),
+                 (f"llvmpipe Gouraud {lt} thr", "llvmpipe", "gouraud", lt)]
+    cols.append(("clear", "clear", None, 1))
+    rows = [["scene", "triangles"] + [c[0] for c in cols]]
+    for s in res.scenes:
+        tri = res.counts.get(s, (None, None))[0]
+        rows.append([s, f"{tri:,}" if tri else "?"] +
+                    [fmt_ms(res.get(m, s, sh, t)) for _, m, sh, t in cols])
+    return rows
+
+
+def ratio_table(res):
+    """Baseline time / render (all threads) time: above 1 means render is faster."""
+    rows = [["scene", "plain / render flat", "plain / render Gouraud",
+             "fillConvexPoly / render flat"]]
+    llvm = res.has("llvmpipe")
+    if llvm:
+        rows[0] += ["llvmpipe / render flat", "llvmpipe / render Gouraud"]
+    rows[0].append("render flat / clear")
+    for s in res.scenes:
+        flat, gour = res.get("render", s, "flat"), res.get("render", s, "gouraud")
+        row = [s, fmt_ratio(res.get("plain", s, "flat"), flat),
+               fmt_ratio(res.get("plain", s, "gouraud"), gour),
+               fmt_ratio(res.get("fillConvexPoly", s, "flat"), flat)]
+        if llvm:
+            row += [fmt_ratio(res.get("llvmpipe", s, "flat"), flat),
+                    fmt_ratio(res.get("llvmpipe", s, "gouraud"), gour)]
+        row.append(fmt_ratio(flat, res.get("clear", s)))
+        rows.append(row)
+    return rows
+
+
+def markdown(rows):
+    out = ["| " + " | ".join(rows[0]) + " |", "|" + "---|" * len(rows[0])]
+    out += ["| " + " | ".join(r) + " |" for r in rows[1:]]
+    return "\n".join(out)
+
+
+def series(res):
+    """(label, method, shade, threads, style) of the plotted lines."""
+    n = res.all_threads
+    out = [(f"render flat ({n} thr)", "render", "flat", n, dict(color="C0", ls="-", marker="o")),
+           (f"render Gouraud ({n} thr)", "render", "gouraud", n,
+            dict(color="C0", ls="--", marker="o")),
+           ("plain flat", "plain", "flat", 1, dict(color="C1", ls="-", marker="s")),
+           ("plain Gouraud", "plain", "gouraud", 1, dict(color="C1", ls="--", marker="s")),
+           ("fillConvexPoly", "fillConvexPoly", "flat", 1, dict(color="C2", ls="-", marker="^"))]
+    if res.has("llvmpipe"):
+        lt = res.llvmpipe_threads()
+        out += [(f"llvmpipe flat ({lt} thr)", "llvmpipe", "flat", lt,
+                 dict(color="C3", ls="-", marker="D")),
+                (f"llvmpipe Gouraud ({lt} thr)", "llvmpipe", "gouraud", lt,
+                 dict(color="C3", ls="--", marker="D"))]
+    out.append(("clear (floor)", "clear", None, 1, dict(color="0.5", ls=":", marker=".")))
+    return out
+
+
+def plot(res, outdir):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print(f"(no plots: matplotlib is not available to {sys.executable})", file=sys.stderr)
+        return []
+    os.makedirs(outdir, exist_ok=True)
+    written = []
+
+    # Time against triangle count: the scenes of the smallest canvas.
+    side = min(int(re.sub(r"\D", "", s) or 0) for s in res.scenes)
+    scenes = sorted((s for s in res.scenes if s.endswith(str(side)) and s in res.counts),
+                    key=lambda s: res.counts[s][0])
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    for label, m, sh, t, style in series(res):
+        pts = [(res.counts[s][0], res.get(m, s, sh, t)) for s in scenes]
+        pts = [p for p in pts if p[1] is not None]
+        if pts:
+            ax.plot(*zip(*pts), label=label, **style)
+    ax.set(xscale="log", yscale="log", xlabel="triangles", ylabel="median time (ms)",
+           title=f"Time against triangle count, {side}x{side} canvas")
+    ax.set_xticks([res.counts[s][0] for s in scenes],
+                  [f"{res.counts[s][0]:,}\n{re.sub(r'[0-9]+$', '', s)}" for s in scenes])
+    ax.minorticks_off()
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    written.append(os.path.join(outdir, "perf_vs_triangles.png"))
+    fig.savefig(written[-1], dpi=110)
+    plt.close(fig)
+
+    # Time against canvas size: one panel per scene kind measured at several sizes.
+    kinds = {}
+    for s in res.scenes:
+        m = re.match(r"([a-z]+)(\d+)$", s)
+        if m:
+            kinds.setdefault(m.group(1), []).append((int(m.group(2)), s))
+    kinds = {k: v for k, v in kinds.items() if len(v) > 1}
+    if kinds:
+        fig, axes = plt.subplots(1, len(kinds), figsize=(4.5 * len(kinds), 4.5), sharey=True,
+                                 squeeze=False)
+        for ax, (kind, sizes) in zip(axes[0], kinds.items()):
+            for label, m, sh, t, style in series(res):
+                pts = [(side_, res.get(m, s, sh, t)) for side_, s in sorted(sizes)]
+                pts = [p for p in pts if p[1] is not None]
+                if pts:
+                    ax.plot(*zip(*pts), label=label, **style)
+            ax.set(xscale="log", yscale="log", xlabel="canvas side (pixels)", title=kind)
+            ax.set_xticks([s for s, _ in sizes], [str(s) for s, _ in sizes])
+            ax.minorticks_off()
+            ax.grid(True, which="both", alpha=0.3)
+        axes[0][0].set_ylabel("median time (ms)")
+        axes[0][-1].legend(fontsize=7)
+        fig.suptitle("Time against canvas size")
+        fig.tight_layout()
+        written.append(os.path.join(outdir, "perf_vs_canvas.png"))
+        fig.savefig(written[-1], dpi=110)
+        plt.close(fig)
+    return written
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("json", nargs="+", help="Google Benchmark JSON output files")
+    ap.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR")
+    args = ap.parse_args()
+
+    res = Results(*load(args.json))
+    if not res.scenes:
+        sys.exit("report.py: no benchmarks in " + ", ".join(args.json))
+    print("\n".join(machine_lines(res)))
+    print("\nMedian time (ms):\n")
+    print(markdown(time_table(res)))
+    print(f"\nRatios (time of the baseline / time of render with {res.all_threads} threads; "
+          "above 1: render is faster):\n")
+    print(markdown(ratio_table(res)))
+    if args.plots:
+        for path in plot(res, args.plots):
+            print(f"wrote {path}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

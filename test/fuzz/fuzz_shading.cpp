@@ -1,0 +1,178 @@
+// libFuzzer target over the whole public API. The input bytes choose the function, the canvas
+// (type, size, an ROI inside a larger image with a guard border), vertices (any float bit
+// pattern, or values on the integer / half / 1/256 grids, or huge), colours, faces (indices in
+// and out of range), depths and shadeType. Invariants checked on every input:
+//  - no pixel outside the canvas (the guard border around the ROI) ever changes;
+//  - a call that throws cv::Exception leaves the whole image untouched;
+//  - no call takes longer than a bounded time;
+//  - a single triangle with finite, moderate coordinates equals the brute-force reference.
+#include "reference/shading_reference.hpp"
+
+#include <fuzzer/FuzzedDataProvider.h>
+#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/shading.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace {
+
+constexpr int kGuard = 3;              // guard pixels around the ROI
+constexpr double kMaxSeconds = 2.0;    // per call; a small canvas must never take longer
+
+[[noreturn]] void fail(const char* what)
+{
+    std::fprintf(stderr, "invariant violated: %s\n", what);
+    std::abort();
+}
+
+double pickCoordinate(FuzzedDataProvider& in, int extent)
+{
+    switch (in.ConsumeIntegralInRange(0, 5)) {
+    case 0: return in.ConsumeIntegralInRange(-4, extent + 4);                    // integer
+    case 1: return in.ConsumeIntegralInRange(-8, 2 * extent + 8) * 0.5;          // halves
+    case 2: return in.ConsumeIntegralInRange(-1024, 256 * extent + 1024) / 256.0;  // grid
+    case 3: return in.ConsumeFloatingPointInRange(-1e10, 1e10);                  // huge
+    case 4: {                                                                     // any float
+        const uint32_t bits = in.ConsumeIntegral<uint32_t>();
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        return f;
+    }
+    default: {                                                                    // any double
+        const uint64_t bits = in.ConsumeIntegral<uint64_t>();
+        double d;
+        std::memcpy(&d, &bits, sizeof d);
+        return d;
+    }
+    }
+}
+
+bool moderate(const std::vector<cv::Point2d>& v)
+{
+    for (const cv::Point2d& p : v)
+        if (!(std::abs(p.x) < 1e6 && std::abs(p.y) < 1e6))
+            return false;
+    return true;
+}
+
+void compareWithReference(const cv::Mat& got, const cv::Mat& before,
+                          const std::vector<cv::Point2d>& v, const std::vector<cv::Vec3d>& c,
+                          bool gouraud)
+{
+    cv::Mat expected = before.clone();
+    shading_ref::fillTriangle(expected, v.data(), c.data(), gouraud);
+    const bool bytes = got.depth() == CV_8U;
+    for (int y = 0; y < got.rows; y++)
+        for (int x = 0; x < got.cols; x++) {
+            const bool refWrote = shading_ref::covers(v.data(), x, y);
+            for (int k = 0; k < 3; k++) {
+                const double g = bytes ? got.at<cv::Vec3b>(y, x)[k] : got.at<cv::Vec3f>(y, x)[k];
+                const double e = bytes ? expected.at<cv::Vec3b>(y, x)[k]
+                                       : expected.at<cv::Vec3f>(y, x)[k];
+                const double b = bytes ? before.at<cv::Vec3b>(y, x)[k] : before.at<cv::Vec3f>(y, x)[k];
+                if (!refWrote) {
+                    if (g != b && !(std::isnan(g) && std::isnan(b)))
+                        fail("a pixel outside the reference coverage changed");
+                    continue;
+                }
+                if (std::isnan(e) || std::isinf(e))
+                    continue;  // non-finite colours: coverage is what matters
+                // Floats: relative to the colours' magnitude; bytes: one step of rounding.
+                double scale = 1;
+                for (const cv::Vec3d& ci : c)
+                    scale = std::max(scale, std::abs(ci[k]));
+                const double tol = bytes ? 1.0 : 1e-4 * scale;
+                if (!(std::abs(g - e) <= tol))
+                    fail("colour differs from the reference");
+            }
+        }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
+{
+    static const bool quiet = [] { cv::setNumThreads(1); return true; }();
+    (void)quiet;
+    FuzzedDataProvider in(data, size);
+    const int function = in.ConsumeIntegralInRange(0, 3);  // flats, gouraud, drawMesh, render
+    static const int kTypes[] = {CV_32FC3, CV_8UC3, CV_32FC3, CV_8UC3, CV_8UC1, CV_64FC3, CV_32FC4};
+    const int type = kTypes[in.ConsumeIntegralInRange(0, 6)];
+    const int width = in.ConsumeIntegralInRange(0, 40), height = in.ConsumeIntegralInRange(0, 40);
+
+    // The canvas is an ROI of a larger image whose guard border is a known pattern.
+    cv::Mat whole(height + 2 * kGuard, width + 2 * kGuard, type);
+    cv::randu(whole, cv::Scalar::all(0), cv::Scalar::all(200));
+    cv::Mat canvas = whole(cv::Rect(kGuard, kGuard, width, height));
+    const cv::Mat wholeBefore = whole.clone();
+
+    const int vertexCount = function < 2 ? (in.ConsumeBool() ? 3 : in.ConsumeIntegralInRange(0, 5))
+                                         : in.ConsumeIntegralInRange(0, 24);
+    std::vector<cv::Point2d> verts(vertexCount);
+    for (cv::Point2d& p : verts)
+        p = cv::Point2d(pickCoordinate(in, width), pickCoordinate(in, height));
+    const int colorCount = in.ConsumeIntegralInRange(0, 8) == 0 ? in.ConsumeIntegralInRange(0, 5)
+                                                                 : vertexCount;
+    const double colorScale = type == CV_8UC3 ? 255.0 : 1.0;
+    std::vector<cv::Vec3d> colors(colorCount);
+    for (cv::Vec3d& c : colors)
+        for (int k = 0; k < 3; k++)
+            c[k] = in.ConsumeIntegralInRange(0, 20) == 0 ? pickCoordinate(in, 1)
+                                                         : in.ConsumeProbability<double>() * colorScale;
+    std::vector<cv::Vec3i> faces(function >= 2 ? in.ConsumeIntegralInRange(0, 32) : 0);
+    for (cv::Vec3i& f : faces)
+        for (int k = 0; k < 3; k++)
+            f[k] = in.ConsumeIntegralInRange(0, 40) == 0 ? in.ConsumeIntegral<int>()
+                                                         : in.ConsumeIntegralInRange(0, std::max(0, vertexCount - 1));
+    std::vector<double> depth;
+    if (in.ConsumeIntegralInRange(0, 4) != 0)
+        depth.resize(in.ConsumeIntegralInRange(0, 10) == 0 ? in.ConsumeIntegralInRange(0, 30) : vertexCount);
+    for (double& d : depth)
+        d = in.ConsumeIntegralInRange(0, 10) == 0 ? pickCoordinate(in, 4) : in.ConsumeIntegralInRange(0, 6);
+    const int shadeType = in.ConsumeIntegralInRange(0, 30) == 0 ? in.ConsumeIntegral<int>()
+                                                                : in.ConsumeIntegralInRange(0, 1);
+    const cv::Size renderSize(in.ConsumeIntegralInRange(-2, 40), in.ConsumeIntegralInRange(-2, 40));
+
+    const auto start = std::chrono::steady_clock::now();
+    bool threw = false;
+    cv::Mat rendered;
+    try {
+        switch (function) {
+        case 0: cv::shading::flats(canvas, verts, colors); break;
+        case 1: cv::shading::gouraud(canvas, verts, colors); break;
+        case 2: cv::shading::drawMesh(canvas, verts, faces, colors, depth, shadeType); break;
+        default:
+            cv::shading::render(verts, faces, colors, depth, rendered, shadeType, renderSize);
+            if (rendered.size() != renderSize || rendered.type() != CV_32FC3)
+                fail("render produced the wrong size or type");
+        }
+    } catch (const cv::Exception&) {
+        threw = true;
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (seconds > kMaxSeconds)
+        fail("a call took too long");
+
+    cv::Mat diff;
+    cv::compare(whole.reshape(1), wholeBefore.reshape(1), diff, cv::CMP_NE);
+    if (threw) {
+        if (cv::countNonZero(diff) != 0)
+            fail("a rejected call changed the image");
+        if (!rendered.empty())
+            fail("a rejected render produced an image");
+        return 0;
+    }
+    const cv::Mat inner = diff(cv::Rect(kGuard * whole.channels(), kGuard, width * whole.channels(), height));
+    if (cv::countNonZero(diff) != cv::countNonZero(inner))
+        fail("a pixel outside the canvas changed");
+    if (function < 2 && verts.size() == 3 && colors.size() == 3 && moderate(verts))
+        compareWithReference(canvas, wholeBefore(cv::Rect(kGuard, kGuard, width, height)), verts,
+                             colors, function == 1);
+    return 0;
+}
