@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 using namespace cv;
 using shading_test::maxAbsDiff;
@@ -299,4 +300,34 @@ TEST(ShadingMesh, AllInputFormsAgree)
                                 shading::SHADE_GOURAUD, Size(12, 12));
                 EXPECT_EQ(maxAbsDiff(img, expected), 0.0) << i << "," << j << "," << k;
             }
+}
+
+// Many callers at once, each into its own canvas (while the library also runs its own parallel
+// loops): every result equals the one computed alone.
+TEST(ShadingMesh, ConcurrentCallsIntoSeparateCanvases)
+{
+    std::vector<Point2d> verts;
+    std::vector<Vec3i> faces;
+    makeGridMesh(Size(120, 90), 20, false, 21, verts, faces);
+    const std::vector<Vec3f> colors = randomColors(verts.size(), 22);
+    RNG rng(23);
+    std::vector<float> depth(verts.size());
+    for (float& d : depth)
+        d = float(rng.uniform(0, 4));
+    Mat expected;
+    shading::render(verts, faces, colors, depth, expected, shading::SHADE_GOURAUD, Size(120, 90));
+
+    constexpr int kCallers = 6, kRepeats = 20;
+    std::vector<Mat> results(kCallers * kRepeats);
+    std::vector<std::thread> callers;
+    for (int t = 0; t < kCallers; t++)
+        callers.emplace_back([&, t] {
+            for (int r = 0; r < kRepeats; r++)
+                shading::render(verts, faces, colors, depth, results[t * kRepeats + r],
+                                shading::SHADE_GOURAUD, Size(120, 90));
+        });
+    for (std::thread& c : callers)
+        c.join();
+    for (const Mat& m : results)
+        EXPECT_EQ(maxAbsDiff(m, expected), 0.0);
 }

@@ -248,3 +248,14 @@ TEST(ShadingTriangle, AllInputFormsAgree)
             EXPECT_EQ(shading_test::maxAbsDiff(canvas, expected), 0.0) << "forms " << i << "," << j;
         }
 }
+
+// Found by the fuzzer: a colour far beyond float's range made the Gouraud x-step infinite, and
+// the first pixel of a span (step * 0) NaN. The sample on vertex (3, 18) must get that vertex's
+// colour exactly: green 2.5, which rounds (half to even) to 2.
+TEST(ShadingTriangle, GouraudColoursBeyondFloatRange)
+{
+    Mat canvas(40, 10, CV_8UC3, Scalar::all(7));
+    shading::gouraud(canvas, std::vector<Point2d>{{3, 18}, {3, 30}, {4, 16.5}},
+                     std::vector<Vec3d>{{89, 2.5, 64}, {8.7, 239.3, 13.1}, {62.9, -1.7e48, 190.4}});
+    EXPECT_EQ(canvas.at<Vec3b>(18, 3), Vec3b(89, 2, 64));
+}

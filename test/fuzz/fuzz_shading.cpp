@@ -87,8 +87,13 @@ void compareWithReference(const cv::Mat& got, const cv::Mat& before,
                 for (const cv::Vec3d& ci : c)
                     scale = std::max(scale, std::abs(ci[k]));
                 const double tol = bytes ? 1.0 : 1e-4 * scale;
-                if (!(std::abs(g - e) <= tol))
+                if (!(std::abs(g - e) <= tol)) {
+                    std::fprintf(stderr, "pixel (%d, %d) channel %d: got %.9g, reference %.9g\n", x, y, k, g, e);
+                    for (int i = 0; i < 3; i++)
+                        std::fprintf(stderr, "  vertex %.17g %.17g colour %.17g %.17g %.17g\n", v[i].x,
+                                     v[i].y, c[i][0], c[i][1], c[i][2]);
                     fail("colour differs from the reference");
+                }
             }
         }
 }

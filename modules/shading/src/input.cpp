@@ -15,9 +15,9 @@ static std::string describe(const Mat& m)
     return format("%dx%d %s", m.rows, m.cols, typeToString(m.type()).c_str());
 }
 
-std::vector<double> readRows(InputArray arr, const char* argName, int dims, int expectedCount)
+//! Checks that `m` holds rows of `dims` CV_32F/CV_64F/CV_32S values; returns the row count.
+static int countRows(const Mat& m, const char* argName, int dims, int expectedCount)
 {
-    const Mat m = arr.getMat();
     const char* shape = dims == 1 ? "N x 1 or 1 x N" : dims == 2 ? "N x 2" : "N x 3";
     const int depth = m.depth();
     if (!m.empty() && depth != CV_32F && depth != CV_64F && depth != CV_32S)
@@ -39,49 +39,63 @@ std::vector<double> readRows(InputArray arr, const char* argName, int dims, int 
     if (expectedCount >= 0 && count != expectedCount)
         CV_Error(Error::StsBadSize, format("%s: expected %d items, got %d (%s)", argName,
                                            expectedCount, count, describe(m).c_str()));
-    std::vector<double> values(size_t(count) * dims);
-    if (count > 0) {
-        Mat dst(m.rows, m.cols, CV_MAKETYPE(CV_64F, m.channels()), values.data());
-        m.convertTo(dst, CV_64F);
+    return count;
+}
+
+/** Reads `arr` as items of type T (Point2d, Vec3d, Vec3i, double), converting straight into the
+result's memory. */
+template <typename T>
+static std::vector<T> readItems(InputArray arr, const char* argName, int expectedCount)
+{
+    using Info = DataType<T>;
+    static_assert(sizeof(T) == sizeof(typename Info::channel_type) * Info::channels,
+                  "T must be packed channel values");
+    const Mat m = arr.getMat();
+    std::vector<T> items(size_t(countRows(m, argName, Info::channels, expectedCount)));
+    if (!items.empty()) {
+        Mat dst(m.rows, m.cols, CV_MAKETYPE(traits::Depth<T>::value, m.channels()), items.data());
+        m.convertTo(dst, traits::Depth<T>::value);  // dst has the right size and type: no reallocation
     }
-    return values;
+    return items;
 }
 
 std::vector<Point2d> readPoints(InputArray arr, const char* argName, int expectedCount)
 {
-    const std::vector<double> v = readRows(arr, argName, 2, expectedCount);
-    std::vector<Point2d> points(v.size() / 2);
-    for (size_t i = 0; i < points.size(); i++)
-        points[i] = Point2d(v[2 * i], v[2 * i + 1]);
-    return points;
+    return readItems<Point2d>(arr, argName, expectedCount);
 }
 
 std::vector<Vec3d> readColors(InputArray arr, const char* argName, int expectedCount)
 {
-    const std::vector<double> v = readRows(arr, argName, 3, expectedCount);
-    std::vector<Vec3d> colors(v.size() / 3);
-    for (size_t i = 0; i < colors.size(); i++)
-        colors[i] = Vec3d(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-    return colors;
+    return readItems<Vec3d>(arr, argName, expectedCount);
 }
 
 std::vector<Vec3i> readFaces(InputArray arr, const char* argName, int vertexCount)
 {
-    const std::vector<double> v = readRows(arr, argName, 3, -1);
-    std::vector<Vec3i> faces(v.size() / 3);
-    for (size_t i = 0; i < faces.size(); i++) {
-        for (int k = 0; k < 3; k++) {
-            const double index = v[3 * i + k];
-            if (!(index >= 0 && index < vertexCount))
-                CV_Error(Error::StsOutOfRange,
-                         format("%s: face %zu has index %g, outside [0, %d) (the vertex count)",
-                                argName, i, index, vertexCount));
-            if (index != std::floor(index))
-                CV_Error(Error::StsBadArg, format("%s: face %zu has non-integer index %g",
-                                                  argName, i, index));
-            faces[i][k] = int(index);
-        }
+    std::vector<Vec3i> faces;
+    if (arr.depth() == CV_32S) {
+        faces = readItems<Vec3i>(arr, argName, -1);
+    } else {
+        const std::vector<Vec3d> values = readItems<Vec3d>(arr, argName, -1);
+        faces.resize(values.size());
+        for (size_t i = 0; i < values.size(); i++)
+            for (int k = 0; k < 3; k++) {
+                const double index = values[i][k];
+                if (!(index >= 0 && index < vertexCount))
+                    CV_Error(Error::StsOutOfRange,
+                             format("%s: face %zu has index %g, outside [0, %d) (the vertex "
+                                    "count)", argName, i, index, vertexCount));
+                if (index != std::floor(index))
+                    CV_Error(Error::StsBadArg, format("%s: face %zu has non-integer index %g",
+                                                      argName, i, index));
+                faces[i][k] = int(index);
+            }
     }
+    for (size_t i = 0; i < faces.size(); i++)
+        for (int k = 0; k < 3; k++)
+            if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
+                CV_Error(Error::StsOutOfRange,
+                         format("%s: face %zu has index %d, outside [0, %d) (the vertex count)",
+                                argName, i, faces[i][k], vertexCount));
     return faces;
 }
 
@@ -89,7 +103,7 @@ std::vector<double> readDepths(InputArray arr, const char* argName, int expected
 {
     if (arr.empty())
         return {};
-    return readRows(arr, argName, 1, expectedCount);
+    return readItems<double>(arr, argName, expectedCount);
 }
 
 void checkCanvas(InputOutputArray canvas, const char* argName)

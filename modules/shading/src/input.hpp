@@ -13,10 +13,8 @@ namespace cv {
 namespace shading {
 namespace detail {
 
-//! Reads `arr` as a list of `dims`-component rows of CV_32F/CV_64F/CV_32S. `expectedCount` < 0
-//! accepts any count. Errors name `argName` and describe what was expected and given.
-std::vector<double> readRows(InputArray arr, const char* argName, int dims, int expectedCount);
-
+// Each reader accepts rows of CV_32F/CV_64F/CV_32S values (see the public header for the forms).
+// `expectedCount` < 0 accepts any count. Errors name `argName` and say what was expected and given.
 std::vector<Point2d> readPoints(InputArray arr, const char* argName, int expectedCount);
 std::vector<Vec3d> readColors(InputArray arr, const char* argName, int expectedCount);
 //! Faces as zero-based index triples, each checked against [0, vertexCount).

@@ -182,13 +182,14 @@ void drawMeshFrontToBack(Mat& canvas, const std::vector<Point2d>& vertices,
             for (int k = bandStart[band]; k < bandStart[band + 1] && bandLeft > 0; k++) {
                 const int i = binned[k];
                 const Shader& shader = shaders[i];
-                walkTriangle(triangles[i], y0, y1, width, [&](int y, int xBegin, int xEnd) {
+                const TriangleSetup& triangle = triangles[i];
+                walkTriangle(triangle, y0, y1, width, [&](int y, int xBegin, int xEnd) {
                     int& left = rowLeft[y - y0];
                     if (left == 0)
                         return;
                     T* row = canvas.ptr<T>(y);
                     const int claimed = coverage.claim(y - y0, xBegin, xEnd, [&](int a, int b) {
-                        shader(row, y, xBegin, a, b);
+                        shader(triangle, row, y, xBegin, a, b);
                     });
                     left -= claimed;
                     bandLeft -= claimed;

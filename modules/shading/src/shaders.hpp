@@ -9,6 +9,9 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
+#include <limits>
+
 namespace cv {
 namespace shading {
 namespace detail {
@@ -32,7 +35,8 @@ struct FlatShader {
             color[k] = toChannel<T>(float((c[0][k] + c[1][k] + c[2][k]) / 3.0));
     }
 
-    void operator()(T* row, int /*y*/, int /*spanBegin*/, int xBegin, int xEnd) const
+    void operator()(const TriangleSetup&, T* row, int /*y*/, int /*spanBegin*/, int xBegin,
+                    int xEnd) const
     {
         const T c0 = color[0], c1 = color[1], c2 = color[2];
         for (int x = xBegin; x < xEnd; x++) {
@@ -53,43 +57,46 @@ depends only on the triangle and its span's start, never on what was drawn befor
 unmasked drawing, and any thread count, agree bit for bit. */
 template <typename T>
 struct GouraudShader {
-    FixedPoint p[3];   //!< canonical (top, middle, bottom) order
-    double color[3][3];  //!< color[vertex][channel]
-    double invArea2;   //!< 1 / twice the signed area, in subpixel units
-    float stepX[3];    //!< d(colour)/dx per pixel
-    bool narrow;
+    double color[3][3];  //!< color[vertex][channel], vertices in the setup's canonical order
+    double invArea2;     //!< 1 / twice the signed area, in subpixel units
+    float stepX[3];      //!< d(colour)/dx per pixel
 
     GouraudShader() = default;
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d c[3])
     {
-        p[0] = t.top, p[1] = t.mid, p[2] = t.bottom;
-        narrow = t.narrow;
+        const FixedPoint p[3] = {t.top, t.mid, t.bottom};
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < 3; k++)
                 color[i][k] = c[order[i]][k];
-        invArea2 = 1.0 / double(edgeValue(p[0], p[1], p[2]));
+        invArea2 = 1.0 / double(edgeValue(p[0], p[1], p[2], t.narrow));
         // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
         const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,
                               -double(p[0].y - p[2].y) * kSubpixelOne * invArea2,
                               -double(p[1].y - p[0].y) * kSubpixelOne * invArea2};
+        // Clamped to float's range: an infinite step would turn the span's first pixel (step * 0)
+        // into NaN for colours beyond float's range.
+        const double maxStep = std::numeric_limits<float>::max();
         for (int k = 0; k < 3; k++)
-            stepX[k] = float(dw[0] * color[0][k] + dw[1] * color[1][k] + dw[2] * color[2][k]);
+            stepX[k] = float(std::clamp(dw[0] * color[0][k] + dw[1] * color[1][k] +
+                                        dw[2] * color[2][k], -maxStep, maxStep));
     }
 
     //! Edge function of a -> b at q, exactly: (b - a) x (q - a).
-    Int128 edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q) const
+    static Int128 edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q,
+                            bool narrow)
     {
         if (narrow)
             return Int128((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x));
         return Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x);
     }
 
-    void operator()(T* row, int y, int spanBegin, int xBegin, int xEnd) const
+    void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
+                    int xEnd) const
     {
         const FixedPoint q = {int64_t(spanBegin) * kSubpixelOne, int64_t(y) * kSubpixelOne};
-        const double w0 = double(edgeValue(p[1], p[2], q)) * invArea2;
-        const double w1 = double(edgeValue(p[2], p[0], q)) * invArea2;
-        const double w2 = double(edgeValue(p[0], p[1], q)) * invArea2;
+        const double w0 = double(edgeValue(t.mid, t.bottom, q, t.narrow)) * invArea2;
+        const double w1 = double(edgeValue(t.bottom, t.top, q, t.narrow)) * invArea2;
+        const double w2 = double(edgeValue(t.top, t.mid, q, t.narrow)) * invArea2;
         float base[3];
         for (int k = 0; k < 3; k++)
             base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);

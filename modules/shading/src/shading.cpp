@@ -25,7 +25,7 @@ void drawTriangle(Mat& canvas, const Point2d v[3], const Vec3d c[3])
         return;
     const Shader<T> shader(setup, order, c);
     walkTriangle(setup, 0, canvas.rows, canvas.cols, [&](int y, int xBegin, int xEnd) {
-        shader(canvas.ptr<T>(y), y, xBegin, xBegin, xEnd);
+        shader(setup, canvas.ptr<T>(y), y, xBegin, xBegin, xEnd);
     });
 }
 
