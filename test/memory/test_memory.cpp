@@ -1,0 +1,100 @@
+// Extra memory of drawing a big mesh, measured. This executable replaces the global operator
+// new/delete to track the bytes the library holds at once (its std::vector buffers); the canvas
+// itself (cv::Mat, allocated by OpenCV's fastMalloc) is the caller's and not counted.
+//
+// Documented bound (README, "Memory"): while drawing a mesh of K faces and L vertices, the
+// library holds at most kBytesPerFace * K + kBytesPerVertex * L bytes, plus a few kilobytes per
+// thread for coverage masks.
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/shading.hpp>
+
+#include <malloc.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+
+namespace {
+
+std::atomic<long long> g_current{0}, g_peak{0};
+
+void track(void* p)
+{
+    const long long now = g_current += (long long)malloc_usable_size(p);
+    long long peak = g_peak.load();
+    while (now > peak && !g_peak.compare_exchange_weak(peak, now)) {
+    }
+}
+
+void* trackedAlloc(size_t n)
+{
+    void* p = std::malloc(n ? n : 1);
+    if (!p)
+        throw std::bad_alloc();
+    track(p);
+    return p;
+}
+
+void trackedFree(void* p) noexcept
+{
+    if (p) {
+        g_current -= (long long)malloc_usable_size(p);
+        std::free(p);
+    }
+}
+
+constexpr long long kBytesPerFace = 200;
+constexpr long long kBytesPerVertex = 64;
+constexpr long long kSlack = 1 << 20;  // thread-local masks, bins' band table, gtest's own use
+
+}  // namespace
+
+void* operator new(size_t n) { return trackedAlloc(n); }
+void* operator new[](size_t n) { return trackedAlloc(n); }
+void operator delete(void* p) noexcept { trackedFree(p); }
+void operator delete[](void* p) noexcept { trackedFree(p); }
+void operator delete(void* p, size_t) noexcept { trackedFree(p); }
+void operator delete[](void* p, size_t) noexcept { trackedFree(p); }
+
+// A 1000 x 1000 grid of cells, two faces each: 2,000,000 faces, 1,002,001 vertices, 1024 x 1024.
+TEST(ShadingMemory, TwoMillionFacesStayWithinTheDocumentedBound)
+{
+    const int n = 1000;
+    std::vector<cv::Point2f> verts;
+    std::vector<cv::Vec3f> colors;
+    std::vector<float> depth;
+    std::vector<cv::Vec3i> faces;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            verts.emplace_back(i * 1.024f, j * 1.024f);
+            colors.emplace_back(i / float(n), j / float(n), 0.5f);
+            depth.push_back(float((i * 7 + j * 13) % 101));
+        }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const int a = j * (n + 1) + i;
+            faces.emplace_back(a, a + 1, a + n + 2);
+            faces.emplace_back(a, a + n + 2, a + n + 1);
+        }
+    cv::Mat canvas(1024, 1024, CV_32FC3, cv::Scalar::all(1));
+    const long long faceCount = (long long)faces.size(), vertexCount = (long long)verts.size();
+    const long long bound = kBytesPerFace * faceCount + kBytesPerVertex * vertexCount + kSlack;
+    for (int shade : {cv::shading::SHADE_FLAT, cv::shading::SHADE_GOURAUD}) {
+        const long long before = g_current.load();
+        g_peak = before;
+        cv::shading::drawMesh(canvas, verts, faces, colors, depth, shade);
+        const long long extra = g_peak.load() - before;
+        std::printf("shade %d: %lld faces, %lld vertices: peak extra %lld bytes = %.1f B/face "
+                    "(bound %lld)\n", shade, faceCount, vertexCount, extra,
+                    double(extra) / faceCount, bound);
+        RecordProperty(shade == cv::shading::SHADE_FLAT ? "flat_peak_bytes" : "gouraud_peak_bytes",
+                       std::to_string(extra));
+        EXPECT_LE(extra, bound);
+        EXPECT_GT(extra, 0);  // the tracking does see the library's buffers
+        // Nothing the size of the mesh outlives the call (OpenCV's thread pool may keep a few
+        // bytes on first use).
+        EXPECT_LE(g_current.load() - before, 64 << 10) << "memory still held after the call";
+    }
+}
