@@ -6,7 +6,8 @@
 #
 # usage: modules/shading/perf/run_benchmarks.sh [Google Benchmark flags, e.g.
 #        --benchmark_filter=512 --benchmark_repetitions=3]
-# environment: BUILD_DIR (default build-perf), JOBS (build jobs, default nproc)
+# environment: BUILD_DIR (default build-perf), JOBS (build jobs, default nproc), PLOTS_DIR
+#              (default docs/perf: a filtered run's plots replace the full ones there)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../../.." && pwd)"
 build="${BUILD_DIR:-$root/build-perf}"
@@ -30,5 +31,5 @@ python=python3
 if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
   python=/usr/bin/python3
 fi
-"$python" "$root/modules/shading/perf/report.py" "$results"/*.json --plots "$root/docs/perf" \
+"$python" "$root/modules/shading/perf/report.py" "$results"/*.json --plots "${PLOTS_DIR:-$root/docs/perf}" \
   | tee "$results/report.md"
