@@ -1,8 +1,12 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
-// Mesh drawing on the core: painter's order, then the same image drawn front to back so that
-// every pixel is written once. Triangles are binned into horizontal bands that are rendered in
-// parallel; each band is processed sequentially, so the result never depends on thread count.
+// Mesh drawing on the core. The painter's image (faces far to near, each overwriting) is built
+// front to back instead, so every pixel is written once: a coverage bit mask keeps the first
+// (frontmost) write of each pixel, which is exactly what the painter's algorithm leaves visible.
+//
+// The canvas is cut into bands of rows, rendered in parallel. Each band sorts its own faces and
+// runs sequentially, so the image never depends on the thread count. Per face, only a sort key
+// and a row range are kept between passes: setup happens in the band that draws the face.
 #ifndef OPENCV_SHADING_MESH_HPP
 #define OPENCV_SHADING_MESH_HPP
 
@@ -21,63 +25,23 @@ namespace cv {
 namespace shading {
 namespace detail {
 
-//! A key whose ascending unsigned order is the descending order of `v` (v not NaN).
-inline uint64_t descendingKey(double v)
+//! A key whose unsigned order is the order of `v` (v not NaN; -0 and +0 share a key).
+inline uint64_t ascendingKey(double v)
 {
     if (v == 0)
-        v = 0.0;  // -0 and +0 compare equal, so they must share a key
+        v = 0.0;
     uint64_t bits;
     std::memcpy(&bits, &v, sizeof bits);
-    const uint64_t ascending = (bits >> 63) ? ~bits : bits | (uint64_t(1) << 63);
-    return ~ascending;
-}
-
-/** Face indices in painter's (drawing) order: largest mean vertex depth first, ties in the order
-of `faces`. Empty `depth` keeps the order of `faces`. A face whose mean depth is NaN is left
-out: it has no place in the order and is not drawn.
-
-An LSD radix sort on the depth keys: stable by construction, linear in the face count, and it
-skips the byte positions all keys share (typically most of them). */
-inline std::vector<int> paintersOrder(const std::vector<Vec3i>& faces,
-                                      const std::vector<double>& depth)
-{
-    std::vector<int> order;
-    order.reserve(faces.size());
-    if (depth.empty()) {
-        for (int i = 0; i < int(faces.size()); i++)
-            order.push_back(i);
-        return order;
-    }
-    std::vector<std::pair<uint64_t, int>> keyed, scratch;
-    keyed.reserve(faces.size());
-    for (int i = 0; i < int(faces.size()); i++) {
-        const Vec3i& f = faces[i];
-        const double mean = (depth[f[0]] + depth[f[1]] + depth[f[2]]) / 3.0;
-        if (!std::isnan(mean))
-            keyed.emplace_back(descendingKey(mean), i);
-    }
-    scratch.resize(keyed.size());
-    for (int shift = 0; shift < 64; shift += 8) {
-        size_t offset[257] = {};
-        for (const auto& k : keyed)
-            offset[((k.first >> shift) & 0xff) + 1]++;
-        if (std::find(offset + 1, offset + 257, keyed.size()) != offset + 257)
-            continue;  // every key has the same byte here
-        for (int b = 0; b < 256; b++)
-            offset[b + 1] += offset[b];
-        for (const auto& k : keyed)
-            scratch[offset[(k.first >> shift) & 0xff]++] = k;
-        keyed.swap(scratch);
-    }
-    for (const auto& k : keyed)
-        order.push_back(k.second);
-    return order;
+    return (bits >> 63) ? ~bits : bits | (uint64_t(1) << 63);
 }
 
 /** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
 class CoverageBits {
 public:
-    CoverageBits(int rows, int width) : wordsPerRow_((width + 63) / 64), bits_(size_t(rows) * wordsPerRow_) {}
+    CoverageBits(int rows, int width)
+        : wordsPerRow_((width + 63) / 64), bits_(size_t(rows) * wordsPerRow_)
+    {
+    }
 
     void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
 
@@ -108,6 +72,13 @@ public:
         return claimed;
     }
 
+    //! claim() of the whole row [0, width): visits what no face covered.
+    template <typename RunFn>
+    void claimRest(int row, int width, RunFn&& run)
+    {
+        claim(row, 0, width, run);
+    }
+
 private:
     static int ctz(uint64_t v) { return __builtin_ctzll(v); }  // v != 0
 
@@ -115,75 +86,109 @@ private:
     std::vector<uint64_t> bits_;
 };
 
-//! Rows per band: small enough to balance threads and keep a band's canvas rows in cache.
-constexpr int kBandRows = 16;
+//! Rows per band: a band's canvas rows should stay in cache (about 96 KB) while it is drawn.
+inline int bandRowsFor(const Mat& canvas)
+{
+    const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
+    return int(std::min<size_t>(32, std::max<size_t>(16, (96 << 10) / std::max<size_t>(rowBytes, 1))));
+}
 
-/** Draws faces in `drawOrder` (back to front) as if one after the other, writing each pixel once.
+/** The mesh data the band pass reads: normalised and validated at the API edge. */
+struct MeshView {
+    const std::vector<Point2d>& vertices;
+    const std::vector<Vec3i>& faces;
+    const std::vector<Vec3d>& colors;
+    const std::vector<double>& depth;  //!< empty: draw in face order
+};
 
-Triangles are visited front to back; a per-band coverage bit mask keeps only the first (frontmost)
-write of every pixel, which is exactly the pixel the painter's algorithm leaves visible. Rows
-and bands whose pixels are all final stop consuming triangles. */
+/** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
+order), writing each covered pixel once. With `background`, pixels no face covers are set to it
+(so render() writes every pixel exactly once, with no separate clear). */
 template <class Shader, typename T>
-void drawMeshFrontToBack(Mat& canvas, const std::vector<Point2d>& vertices,
-                         const std::vector<Vec3i>& faces, const std::vector<Vec3d>& colors,
-                         const std::vector<int>& drawOrder)
+void drawMeshFrontToBack(Mat& canvas, const MeshView& mesh, const Vec<T, 3>* background)
 {
     const Size size = canvas.size();
-    const int count = int(drawOrder.size());
-    // Set up every face once, in parallel, front to back. A face that covers nothing gets an
-    // empty row range and is never binned.
-    std::vector<TriangleSetup> triangles(count);
-    std::vector<Shader> shaders(count);
-    constexpr int kSetupChunk = 2048;
-    parallel_for_(Range(0, (count + kSetupChunk - 1) / kSetupChunk), [&](const Range& chunks) {
-        const int end = std::min(count, chunks.end * kSetupChunk);
-        for (int i = chunks.start * kSetupChunk; i < end; i++) {
-            const Vec3i& f = faces[drawOrder[count - 1 - i]];
-            const Point2d v[3] = {vertices[f[0]], vertices[f[1]], vertices[f[2]]};
-            const Vec3d c[3] = {colors[f[0]], colors[f[1]], colors[f[2]]};
-            int order[3];
-            TriangleSetup& t = triangles[i];
-            if (setupTriangle(v, size, t, order))
-                shaders[i] = Shader(t, order, c);
-            else
-                t.rowBegin = t.rowEnd = 0;
+    const int faceCount = int(mesh.faces.size());
+    const bool byDepth = !mesh.depth.empty();
+    const int bandRows = bandRowsFor(canvas);
+    const int bandCount = (size.height + bandRows - 1) / bandRows;
+
+    // Pass 0, parallel over vertices: snap each once (a vertex is shared by ~6 faces).
+    const int vertexCount = int(mesh.vertices.size());
+    std::vector<FixedPoint> snapped(vertexCount);
+    constexpr int kChunk = 4096;
+    parallel_for_(Range(0, (vertexCount + kChunk - 1) / kChunk), [&](const Range& chunks) {
+        const int end = std::min(vertexCount, chunks.end * kChunk);
+        for (int i = chunks.start * kChunk; i < end; i++)
+            snapped[i] = snapToGrid(mesh.vertices[i]);
+    });
+
+    // Pass 1, parallel over faces: the sort key and the bands each face may touch.
+    struct FaceBands {
+        int first, last;  //!< bands [first, last]; first > last: culled
+    };
+    std::vector<uint64_t> keys(byDepth ? faceCount : 0);
+    std::vector<FaceBands> bands(faceCount);
+    parallel_for_(Range(0, (faceCount + kChunk - 1) / kChunk), [&](const Range& chunks) {
+        const int end = std::min(faceCount, chunks.end * kChunk);
+        for (int i = chunks.start * kChunk; i < end; i++) {
+            const Vec3i& f = mesh.faces[i];
+            bands[i] = {1, 0};
+            if (byDepth) {
+                const double mean = (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
+                if (std::isnan(mean))
+                    continue;  // no place in the order: not drawn
+                keys[i] = ascendingKey(mean);
+            }
+            const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
+            int rowBegin, rowEnd;
+            if (triangleRows(p, size, rowBegin, rowEnd))
+                bands[i] = {rowBegin / bandRows, (rowEnd - 1) / bandRows};
         }
     });
 
-    // Bin triangle indices by band (counting sort: each band keeps front-to-back order).
-    const int bandCount = (size.height + kBandRows - 1) / kBandRows;
+    // Pass 2: face indices binned by band, in face order (a counting sort).
     std::vector<int> bandStart(bandCount + 1, 0);
-    for (const TriangleSetup& t : triangles)
-        if (t.rowBegin < t.rowEnd)
-            for (int b = t.rowBegin / kBandRows; b <= (t.rowEnd - 1) / kBandRows; b++)
-                bandStart[b + 1]++;
-    for (int b = 0; b < bandCount; b++)
-        bandStart[b + 1] += bandStart[b];
+    for (const FaceBands& b : bands)
+        for (int k = b.first; k <= b.last; k++)
+            bandStart[k + 1]++;
+    for (int k = 0; k < bandCount; k++)
+        bandStart[k + 1] += bandStart[k];
     std::vector<int> binned(bandStart[bandCount]);
     {
         std::vector<int> cursor(bandStart.begin(), bandStart.end() - 1);
-        for (int i = 0; i < int(triangles.size()); i++) {
-            const TriangleSetup& t = triangles[i];
-            if (t.rowBegin < t.rowEnd)
-                for (int b = t.rowBegin / kBandRows; b <= (t.rowEnd - 1) / kBandRows; b++)
-                    binned[cursor[b]++] = i;
-        }
+        for (int i = 0; i < faceCount; i++)
+            for (int k = bands[i].first; k <= bands[i].last; k++)
+                binned[cursor[k]++] = i;
     }
 
-    const int width = size.width;
+    // Pass 3, parallel over bands: order the band's faces front to back, then draw them.
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
-        CoverageBits coverage(kBandRows, width);
-        int rowLeft[kBandRows];
+        CoverageBits coverage(bandRows, size.width);
+        std::vector<std::pair<uint64_t, int>> order;
+        std::vector<int> rowLeft(bandRows);
         for (int band = range.start; band < range.end; band++) {
-            const int y0 = band * kBandRows, y1 = std::min(size.height, y0 + kBandRows);
+            const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
+            // Front to back is the painter's order reversed: increasing mean depth, and among
+            // equal means the later face first (the painter draws it last, on top).
+            order.clear();
+            for (int k = bandStart[band]; k < bandStart[band + 1]; k++)
+                order.emplace_back(byDepth ? keys[binned[k]] : 0, -binned[k]);
+            std::sort(order.begin(), order.end());
+
             coverage.clear();
-            std::fill(rowLeft, rowLeft + kBandRows, width);
-            int64_t bandLeft = int64_t(y1 - y0) * width;
-            for (int k = bandStart[band]; k < bandStart[band + 1] && bandLeft > 0; k++) {
-                const int i = binned[k];
-                const Shader& shader = shaders[i];
-                const TriangleSetup& triangle = triangles[i];
-                walkTriangle(triangle, y0, y1, width, [&](int y, int xBegin, int xEnd) {
+            std::fill(rowLeft.begin(), rowLeft.end(), size.width);
+            int64_t bandLeft = int64_t(y1 - y0) * size.width;
+            for (size_t k = 0; k < order.size() && bandLeft > 0; k++) {
+                const Vec3i& f = mesh.faces[-order[k].second];
+                const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
+                TriangleSetup triangle;
+                int vertexOrder[3];
+                if (!setupTriangle(p, size, triangle, vertexOrder))
+                    continue;
+                const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
+                const Shader shader(triangle, vertexOrder, c);
+                walkTriangle(triangle, y0, y1, size.width, [&](int y, int xBegin, int xEnd) {
                     int& left = rowLeft[y - y0];
                     if (left == 0)
                         return;
@@ -195,8 +200,17 @@ void drawMeshFrontToBack(Mat& canvas, const std::vector<Point2d>& vertices,
                     bandLeft -= claimed;
                 });
             }
+            if (background) {
+                const Vec<T, 3> bg = *background;
+                for (int y = y0; y < y1; y++) {
+                    Vec<T, 3>* row = canvas.ptr<Vec<T, 3>>(y);
+                    coverage.claimRest(y - y0, size.width, [&](int a, int b) {
+                        std::fill(row + a, row + b, bg);
+                    });
+                }
+            }
         }
-    }, bandCount);
+    });
 }
 
 }  // namespace detail

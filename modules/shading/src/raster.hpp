@@ -44,14 +44,22 @@ inline int64_t roundHalfAway(double v)
     return t + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
 }
 
-//! Snaps (x, y) to the subpixel grid; false for NaN, infinite or out-of-range coordinates.
-inline bool snapToGrid(double x, double y, FixedPoint& p)
+//! Marks a vertex that cannot be drawn (non-finite or out of range): no real one is that far.
+constexpr int64_t kInvalidCoordinate = INT64_MIN;
+
+//! Snaps (x, y) to the subpixel grid; NaN, infinite or out-of-range coordinates give a point
+//! with x == kInvalidCoordinate, which every triangle setup rejects.
+inline FixedPoint snapToGrid(const Point2d& v)
 {
-    if (!(std::abs(x) <= kMaxCoordinate && std::abs(y) <= kMaxCoordinate))
-        return false;
-    p.x = roundHalfAway(x * double(kSubpixelOne));
-    p.y = roundHalfAway(y * double(kSubpixelOne));
-    return true;
+    if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate))
+        return {kInvalidCoordinate, 0};
+    return {roundHalfAway(v.x * double(kSubpixelOne)), roundHalfAway(v.y * double(kSubpixelOne))};
+}
+
+inline bool isValid(const FixedPoint p[3])
+{
+    return p[0].x != kInvalidCoordinate && p[1].x != kInvalidCoordinate &&
+           p[2].x != kInvalidCoordinate;
 }
 
 template <typename T>
@@ -65,6 +73,25 @@ template <typename T>
 inline T ceilDiv(T a, T b)  // b > 0
 {
     return -floorDiv<T>(-a, b);
+}
+
+/** ceil(n / d) for d > 0, |n| < 2^60 and a quotient below 2^40, with rem = result * d - n in
+[0, d). A floating-point quotient is within one of the true one and is corrected exactly in
+integers: several times faster than a 64-bit integer division on common CPUs. */
+inline int64_t ceilDivNarrow(int64_t n, int64_t d, int64_t& rem)
+{
+    int64_t q = int64_t(double(n) / double(d));
+    int64_t r = n - q * d;  // exact
+    while (r > 0) {         // make q * d >= n
+        q++;
+        r -= d;
+    }
+    while (r <= -d) {       // make (q - 1) * d < n
+        q--;
+        r += d;
+    }
+    rem = -r;
+    return q;
 }
 
 /** Walks one non-horizontal edge down the scan lines (the seed's active boundary point,
@@ -90,8 +117,7 @@ struct EdgeWalker {
         den = dy * kSubpixelOne;
         if (narrow) {
             const int64_t n = a.x * dy + (row * kSubpixelOne - a.y) * dx;
-            x = ceilDiv<int64_t>(n, den);
-            rem = x * den - n;
+            x = ceilDivNarrow(n, den, rem);
         } else {
             const Int128 n = Int128(a.x) * dy + Int128(row * kSubpixelOne - a.y) * dx;
             const Int128 q = ceilDiv<Int128>(n, den);
@@ -99,8 +125,12 @@ struct EdgeWalker {
             rem = int64_t(q * den - n);
         }
         const int64_t inc = dx * kSubpixelOne;
-        step = ceilDiv<int64_t>(inc, den);
-        stepRem = step * den - inc;
+        if (narrow) {
+            step = ceilDivNarrow(inc, den, stepRem);
+        } else {
+            step = ceilDiv<int64_t>(inc, den);
+            stepRem = step * den - inc;
+        }
     }
 
     void nextRow()
@@ -140,16 +170,30 @@ inline bool above(const FixedPoint& a, const FixedPoint& b)
     return a.y < b.y || (a.y == b.y && a.x < b.x);
 }
 
-/** Sets up triangle v for a target of `size` pixels. Returns false when it covers no sample of
-the target: a non-finite or out-of-range vertex, zero area, or no overlap. `order` receives the
-input indices of top, middle and bottom vertex (sorted by y, then x): a canonical order, so
-everything derived from it is independent of the order the vertices were given in. */
-inline bool setupTriangle(const Point2d v[3], Size size, TriangleSetup& t, int order[3])
+//! The rows [rowBegin, rowEnd) triangle p may cover on a target of `size` pixels, without the
+//! full setup (for binning). False when it surely covers nothing there.
+inline bool triangleRows(const FixedPoint p[3], Size size, int& rowBegin, int& rowEnd)
 {
-    FixedPoint p[3];
-    for (int i = 0; i < 3; i++)
-        if (!snapToGrid(v[i].x, v[i].y, p[i]))
-            return false;
+    if (!isValid(p))
+        return false;
+    const int64_t xMax = std::max({p[0].x, p[1].x, p[2].x});
+    const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
+    if (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne)
+        return false;
+    rowBegin = clampedRow(std::min({p[0].y, p[1].y, p[2].y}), size.height);
+    rowEnd = clampedRow(std::max({p[0].y, p[1].y, p[2].y}), size.height);
+    return rowBegin < rowEnd;
+}
+
+/** Sets up the triangle with snapped vertices `in` for a target of `size` pixels. Returns false
+when it covers no sample of the target: an invalid vertex, zero area, or no overlap. `order`
+receives the input indices of top, middle and bottom vertex (sorted by y, then x): a canonical
+order, so everything derived from it is independent of the order the vertices were given in. */
+inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, int order[3])
+{
+    if (!isValid(in))
+        return false;
+    FixedPoint p[3] = {in[0], in[1], in[2]};
     order[0] = 0, order[1] = 1, order[2] = 2;
     auto sortPair = [&](int i, int j) {
         if (above(p[j], p[i])) {

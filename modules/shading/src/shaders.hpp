@@ -8,9 +8,11 @@
 #include "raster.hpp"
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/hal/intrin.hpp>
 
 #include <algorithm>
 #include <limits>
+#include <type_traits>
 
 namespace cv {
 namespace shading {
@@ -21,6 +23,28 @@ template <typename T>
 inline T toChannel(float v)
 {
     return saturate_cast<T>(v);
+}
+
+/** Writes pixels [xBegin, xEnd) of a float RGB row: pixel x gets the first three lanes of
+value(x) = base + step * (x - spanBegin), computed lane-wise exactly as the scalar code does.
+With SIMD, each pixel is one 16-byte store whose fourth lane spills into the next pixel and is
+overwritten by that pixel's store; the run's last pixel is stored channel by channel, so nothing
+outside the run is touched. */
+inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, const float base[3],
+                             const float step[3])
+{
+    int x = xBegin;
+#if CV_SIMD128
+    const v_float32x4 b(base[0], base[1], base[2], base[0]), s(step[0], step[1], step[2], step[0]);
+    for (; x < xEnd - 1; x++)
+        v_store(row + 3 * x, b + s * v_setall_f32(float(x - spanBegin)));
+#endif
+    for (; x < xEnd; x++) {
+        const float i = float(x - spanBegin);
+        row[3 * x] = base[0] + step[0] * i;
+        row[3 * x + 1] = base[1] + step[1] * i;
+        row[3 * x + 2] = base[2] + step[2] * i;
+    }
 }
 
 /** Flat shading: the mean of the vertex colours, taken in the order the vertices were given. */
@@ -38,6 +62,11 @@ struct FlatShader {
     void operator()(const TriangleSetup&, T* row, int /*y*/, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
+        if constexpr (std::is_same<T, float>::value) {
+            static const float zero[3] = {0, 0, 0};  // base + 0 * i == base
+            storeFloatPixels(row, xBegin, xBegin, xEnd, color, zero);
+            return;
+        }
         const T c0 = color[0], c1 = color[1], c2 = color[2];
         for (int x = xBegin; x < xEnd; x++) {
             row[3 * x] = c0;
@@ -100,6 +129,10 @@ struct GouraudShader {
         float base[3];
         for (int k = 0; k < 3; k++)
             base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
+        if constexpr (std::is_same<T, float>::value) {
+            storeFloatPixels(row, spanBegin, xBegin, xEnd, base, stepX);
+            return;
+        }
         for (int x = xBegin; x < xEnd; x++) {
             const float i = float(x - spanBegin);
             row[3 * x] = toChannel<T>(base[0] + stepX[0] * i);

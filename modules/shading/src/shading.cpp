@@ -19,9 +19,10 @@ namespace {
 template <template <typename> class Shader, typename T>
 void drawTriangle(Mat& canvas, const Point2d v[3], const Vec3d c[3])
 {
+    const FixedPoint p[3] = {snapToGrid(v[0]), snapToGrid(v[1]), snapToGrid(v[2])};
     TriangleSetup setup;
     int order[3];
-    if (!setupTriangle(v, canvas.size(), setup, order))
+    if (!setupTriangle(p, canvas.size(), setup, order))
         return;
     const Shader<T> shader(setup, order, c);
     walkTriangle(setup, 0, canvas.rows, canvas.cols, [&](int y, int xBegin, int xEnd) {
@@ -76,20 +77,26 @@ MeshData readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inpu
     return mesh;
 }
 
-void drawMeshData(Mat& canvas, const MeshData& mesh, int shadeType)
+//! Draws the mesh; with `background`, also sets every pixel no face covers (render()).
+void drawMeshData(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* background)
 {
-    const std::vector<int> order = paintersOrder(mesh.faces, mesh.depth);
+    const MeshView view{mesh.vertices, mesh.faces, mesh.colors, mesh.depth};
     const bool flat = shadeType == SHADE_FLAT;
     if (canvas.depth() == CV_8U) {
+        const Vec3b bg = background ? Vec3b(saturate_cast<uchar>((*background)[0]),
+                                            saturate_cast<uchar>((*background)[1]),
+                                            saturate_cast<uchar>((*background)[2])) : Vec3b();
         if (flat)
-            drawMeshFrontToBack<FlatShader<uchar>, uchar>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+            drawMeshFrontToBack<FlatShader<uchar>, uchar>(canvas, view, background ? &bg : nullptr);
         else
-            drawMeshFrontToBack<GouraudShader<uchar>, uchar>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+            drawMeshFrontToBack<GouraudShader<uchar>, uchar>(canvas, view, background ? &bg : nullptr);
     } else {
+        const Vec3f bg = background ? Vec3f(float((*background)[0]), float((*background)[1]),
+                                            float((*background)[2])) : Vec3f();
         if (flat)
-            drawMeshFrontToBack<FlatShader<float>, float>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+            drawMeshFrontToBack<FlatShader<float>, float>(canvas, view, background ? &bg : nullptr);
         else
-            drawMeshFrontToBack<GouraudShader<float>, float>(canvas, mesh.vertices, mesh.faces, mesh.colors, order);
+            drawMeshFrontToBack<GouraudShader<float>, float>(canvas, view, background ? &bg : nullptr);
     }
 }
 
@@ -101,7 +108,7 @@ void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces, Inp
     checkCanvas(canvas, "canvas");
     const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     Mat img = canvas.getMat();
-    drawMeshData(img, mesh, shadeType);
+    drawMeshData(img, mesh, shadeType, nullptr);
 }
 
 void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
@@ -113,8 +120,7 @@ void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray
     const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     img.create(size, CV_32FC3);
     Mat canvas = img.getMat();
-    canvas.setTo(background);
-    drawMeshData(canvas, mesh, shadeType);
+    drawMeshData(canvas, mesh, shadeType, &background);  // also fills the background
 }
 
 }  // namespace shading
