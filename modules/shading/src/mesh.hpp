@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -33,6 +34,26 @@ inline uint64_t ascendingKey(double v)
     uint64_t bits;
     std::memcpy(&bits, &v, sizeof bits);
     return (bits >> 63) ? ~bits : bits | (uint64_t(1) << 63);
+}
+
+/** Stable LSD radix sort of (key, value) pairs by key, 8 bits a pass; passes where every key
+has the same byte are skipped (depths in a narrow range share most high bytes). */
+inline void radixSortByKey(std::vector<std::pair<uint64_t, int>>& items,
+                           std::vector<std::pair<uint64_t, int>>& scratch)
+{
+    scratch.resize(items.size());
+    for (int shift = 0; shift < 64; shift += 8) {
+        size_t offset[257] = {};
+        for (const auto& item : items)
+            offset[((item.first >> shift) & 0xff) + 1]++;
+        if (std::find(offset + 1, offset + 257, items.size()) != offset + 257)
+            continue;
+        for (int b = 0; b < 256; b++)
+            offset[b + 1] += offset[b];
+        for (const auto& item : items)
+            scratch[offset[(item.first >> shift) & 0xff]++] = item;
+        items.swap(scratch);
+    }
 }
 
 /** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
@@ -90,7 +111,7 @@ private:
 inline int bandRowsFor(const Mat& canvas)
 {
     const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
-    return int(std::min<size_t>(32, std::max<size_t>(16, (96 << 10) / std::max<size_t>(rowBytes, 1))));
+    return int(std::min<size_t>(32, std::max<size_t>(16, (96 << 10) / std::max<size_t>(rowBytes, 1))));  // <= 32: one bit per row
 }
 
 /** The mesh data the band pass reads: normalised and validated at the API edge. */
@@ -123,17 +144,17 @@ void drawMeshFrontToBack(Mat& canvas, const MeshView& mesh, const Vec<T, 3>* bac
             snapped[i] = snapToGrid(mesh.vertices[i]);
     });
 
-    // Pass 1, parallel over faces: the sort key and the bands each face may touch.
-    struct FaceBands {
-        int first, last;  //!< bands [first, last]; first > last: culled
+    // Pass 1, parallel over faces: the sort key and the rows each face may touch.
+    struct FaceRows {
+        int begin, end;  //!< rows [begin, end); empty: culled
     };
     std::vector<uint64_t> keys(byDepth ? faceCount : 0);
-    std::vector<FaceBands> bands(faceCount);
+    std::vector<FaceRows> rows(faceCount);
     parallel_for_(Range(0, (faceCount + kChunk - 1) / kChunk), [&](const Range& chunks) {
         const int end = std::min(faceCount, chunks.end * kChunk);
         for (int i = chunks.start * kChunk; i < end; i++) {
             const Vec3i& f = mesh.faces[i];
-            bands[i] = {1, 0};
+            rows[i] = {0, 0};
             if (byDepth) {
                 const double mean = (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
                 if (std::isnan(mean))
@@ -141,63 +162,78 @@ void drawMeshFrontToBack(Mat& canvas, const MeshView& mesh, const Vec<T, 3>* bac
                 keys[i] = ascendingKey(mean);
             }
             const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-            int rowBegin, rowEnd;
-            if (triangleRows(p, size, rowBegin, rowEnd))
-                bands[i] = {rowBegin / bandRows, (rowEnd - 1) / bandRows};
+            triangleRows(p, size, rows[i].begin, rows[i].end);
         }
     });
 
     // Pass 2: face indices binned by band, in face order (a counting sort).
+    auto forEachBand = [&](const FaceRows& r, auto&& fn) {
+        if (r.begin < r.end)
+            for (int k = r.begin / bandRows; k <= (r.end - 1) / bandRows; k++)
+                fn(k);
+    };
     std::vector<int> bandStart(bandCount + 1, 0);
-    for (const FaceBands& b : bands)
-        for (int k = b.first; k <= b.last; k++)
-            bandStart[k + 1]++;
+    for (const FaceRows& r : rows)
+        forEachBand(r, [&](int k) { bandStart[k + 1]++; });
     for (int k = 0; k < bandCount; k++)
         bandStart[k + 1] += bandStart[k];
     std::vector<int> binned(bandStart[bandCount]);
     {
         std::vector<int> cursor(bandStart.begin(), bandStart.end() - 1);
         for (int i = 0; i < faceCount; i++)
-            for (int k = bands[i].first; k <= bands[i].last; k++)
-                binned[cursor[k]++] = i;
+            forEachBand(rows[i], [&](int k) { binned[cursor[k]++] = i; });
     }
 
     // Pass 3, parallel over bands: order the band's faces front to back, then draw them.
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
         CoverageBits coverage(bandRows, size.width);
-        std::vector<std::pair<uint64_t, int>> order;
+        std::vector<std::pair<uint64_t, int>> order, scratch;
         std::vector<int> rowLeft(bandRows);
         for (int band = range.start; band < range.end; band++) {
             const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
             order.clear();
-            for (int k = bandStart[band]; k < bandStart[band + 1]; k++)
-                order.emplace_back(byDepth ? keys[binned[k]] : 0, -binned[k]);
-            std::sort(order.begin(), order.end());
+            for (int k = bandStart[band + 1] - 1; k >= bandStart[band]; k--)
+                order.emplace_back(byDepth ? keys[binned[k]] : 0, binned[k]);
+            if (byDepth)
+                radixSortByKey(order, scratch);  // stable: equal keys stay later-face-first
 
             coverage.clear();
             std::fill(rowLeft.begin(), rowLeft.end(), size.width);
-            int64_t bandLeft = int64_t(y1 - y0) * size.width;
-            for (size_t k = 0; k < order.size() && bandLeft > 0; k++) {
-                const Vec3i& f = mesh.faces[-order[k].second];
+            uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
+            const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
+            for (size_t k = 0; k < order.size() && fullRows != allRows; k++) {
+                const int face = order[k].second;
+                // Skip a face whose rows here are all final before touching its vertices.
+                const int r0 = std::max(rows[face].begin, y0) - y0;
+                const int r1 = std::min(rows[face].end, y1) - y0;
+                const uint32_t faceRows = uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0));
+                if ((faceRows & ~fullRows) == 0)
+                    continue;
+                const Vec3i& f = mesh.faces[face];
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
                 TriangleSetup triangle;
                 int vertexOrder[3];
                 if (!setupTriangle(p, size, triangle, vertexOrder))
                     continue;
-                const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
-                const Shader shader(triangle, vertexOrder, c);
+                // Built on the first pixel this face wins: hidden faces never read colours.
+                std::optional<Shader> shader;
                 walkTriangle(triangle, y0, y1, size.width, [&](int y, int xBegin, int xEnd) {
                     int& left = rowLeft[y - y0];
                     if (left == 0)
                         return;
                     T* row = canvas.ptr<T>(y);
-                    const int claimed = coverage.claim(y - y0, xBegin, xEnd, [&](int a, int b) {
-                        shader(triangle, row, y, xBegin, a, b);
+                    left -= coverage.claim(y - y0, xBegin, xEnd, [&](int a, int b) {
+                        if (!shader) {
+                            const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]],
+                                                mesh.colors[f[2]]};
+                            shader.emplace(triangle, vertexOrder, c);
+                        }
+                        (*shader)(triangle, row, y, xBegin, a, b);
                     });
-                    left -= claimed;
-                    bandLeft -= claimed;
+                    if (left == 0)
+                        fullRows |= uint32_t(1) << (y - y0);
                 });
             }
             if (background) {

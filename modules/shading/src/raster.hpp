@@ -133,14 +133,12 @@ struct EdgeWalker {
         }
     }
 
-    void nextRow()
+    void nextRow()  // branch-free: the carry is data-dependent and mispredicts often
     {
-        x += step;
         rem += stepRem;
-        if (rem >= den) {
-            rem -= den;
-            --x;
-        }
+        const int64_t carry = rem >= den;
+        x += step - carry;
+        rem -= carry * den;
     }
 };
 
