@@ -2,9 +2,9 @@
 // new/delete to track the bytes the library holds at once (its std::vector buffers); the canvas
 // itself (cv::Mat, allocated by OpenCV's fastMalloc) is the caller's and not counted.
 //
-// Documented bound (README, "Memory"): while drawing a mesh of K faces and L vertices, the
-// library holds at most kBytesPerFace * K + kBytesPerVertex * L bytes, plus a few kilobytes per
-// thread for coverage masks.
+// Documented bound (README, "Hard use"): while drawing a mesh of K faces and L vertices, the
+// library holds at most kBytesPerFace * K + kBytesPerVertex * L bytes (faces crossing several
+// row bands add 4 bytes per extra band), plus a few kilobytes per thread for coverage masks.
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/shading.hpp>
@@ -45,7 +45,7 @@ void trackedFree(void* p) noexcept
     }
 }
 
-constexpr long long kBytesPerFace = 200;
+constexpr long long kBytesPerFace = 48;
 constexpr long long kBytesPerVertex = 64;
 constexpr long long kSlack = 1 << 20;  // thread-local masks, bins' band table, gtest's own use
 
