@@ -114,19 +114,19 @@ inline int bandRowsFor(const Mat& canvas)
     return int(std::min<size_t>(32, std::max<size_t>(16, (96 << 10) / std::max<size_t>(rowBytes, 1))));  // <= 32: one bit per row
 }
 
-/** The mesh data the band pass reads: normalised and validated at the API edge. */
-struct MeshView {
-    const std::vector<Point2d>& vertices;
-    const std::vector<Vec3i>& faces;
-    const std::vector<Vec3d>& colors;
-    const std::vector<double>& depth;  //!< empty: draw in face order
+/** A mesh as the band pass reads it: normalised and validated at the API edge. */
+struct MeshData {
+    std::vector<Point2d> vertices;
+    std::vector<Vec3i> faces;   //!< indices checked against vertices
+    std::vector<Vec3d> colors;  //!< one per vertex
+    std::vector<double> depth;  //!< one per vertex, or empty: draw in face order
 };
 
 /** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
 order), writing each covered pixel once. With `background`, pixels no face covers are set to it
 (so render() writes every pixel exactly once, with no separate clear). */
 template <class Shader, typename T>
-void drawMeshFrontToBack(Mat& canvas, const MeshView& mesh, const Vec<T, 3>* background)
+void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* background)
 {
     const Size size = canvas.size();
     const int faceCount = int(mesh.faces.size());

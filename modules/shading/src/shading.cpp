@@ -57,13 +57,6 @@ void gouraud(InputOutputArray canvas, InputArray vertices, InputArray vcolors)
 
 namespace {
 
-struct MeshData {
-    std::vector<Point2d> vertices;
-    std::vector<Vec3i> faces;
-    std::vector<Vec3d> colors;
-    std::vector<double> depth;
-};
-
 MeshData readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
                   int shadeType)
 {
@@ -78,26 +71,18 @@ MeshData readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inpu
 }
 
 //! Draws the mesh; with `background`, also sets every pixel no face covers (render()).
-void drawMeshData(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* background)
+template <typename T>
+void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* background)
 {
-    const MeshView view{mesh.vertices, mesh.faces, mesh.colors, mesh.depth};
-    const bool flat = shadeType == SHADE_FLAT;
-    if (canvas.depth() == CV_8U) {
-        const Vec3b bg = background ? Vec3b(saturate_cast<uchar>((*background)[0]),
-                                            saturate_cast<uchar>((*background)[1]),
-                                            saturate_cast<uchar>((*background)[2])) : Vec3b();
-        if (flat)
-            drawMeshFrontToBack<FlatShader<uchar>, uchar>(canvas, view, background ? &bg : nullptr);
-        else
-            drawMeshFrontToBack<GouraudShader<uchar>, uchar>(canvas, view, background ? &bg : nullptr);
-    } else {
-        const Vec3f bg = background ? Vec3f(float((*background)[0]), float((*background)[1]),
-                                            float((*background)[2])) : Vec3f();
-        if (flat)
-            drawMeshFrontToBack<FlatShader<float>, float>(canvas, view, background ? &bg : nullptr);
-        else
-            drawMeshFrontToBack<GouraudShader<float>, float>(canvas, view, background ? &bg : nullptr);
-    }
+    Vec<T, 3> bg;
+    if (background)
+        for (int k = 0; k < 3; k++)
+            bg[k] = saturate_cast<T>((*background)[k]);
+    const Vec<T, 3>* fill = background ? &bg : nullptr;
+    if (shadeType == SHADE_FLAT)
+        drawMeshFrontToBack<FlatShader<T>, T>(canvas, mesh, fill);
+    else
+        drawMeshFrontToBack<GouraudShader<T>, T>(canvas, mesh, fill);
 }
 
 }  // namespace
@@ -108,7 +93,10 @@ void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces, Inp
     checkCanvas(canvas, "canvas");
     const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     Mat img = canvas.getMat();
-    drawMeshData(img, mesh, shadeType, nullptr);
+    if (img.depth() == CV_8U)
+        drawMeshAs<uchar>(img, mesh, shadeType, nullptr);
+    else
+        drawMeshAs<float>(img, mesh, shadeType, nullptr);
 }
 
 void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
@@ -120,7 +108,7 @@ void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray
     const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     img.create(size, CV_32FC3);
     Mat canvas = img.getMat();
-    drawMeshData(canvas, mesh, shadeType, &background);  // also fills the background
+    drawMeshAs<float>(canvas, mesh, shadeType, &background);  // also fills the background
 }
 
 }  // namespace shading
