@@ -1,0 +1,64 @@
+// The benchmark scenes (modules/shading/perf/perf_scenes.hpp: a grid that tiles the canvas, a UV
+// sphere with back faces, random overlapping triangles, the demo mesh), at a small size: render
+// equals the brute-force reference painter's pixel for pixel, with 1 and 2 threads, and the
+// thread counts agree bit for bit.
+#include "reference/shading_reference.hpp"
+#include "test_common.hpp"
+
+#include "../modules/shading/perf/perf_scenes.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/shading.hpp>
+
+#include <string>
+#include <vector>
+
+using namespace cv;
+
+namespace {
+
+template <typename T>
+std::vector<T> rowsOf(const Mat& m)
+{
+    Mat converted;
+    m.convertTo(converted, traits::Depth<T>::value);
+    return std::vector<T>(converted.reshape(DataType<T>::channels, int(m.total() / DataType<T>::channels)));
+}
+
+}  // namespace
+
+class ShadingScenes : public testing::TestWithParam<std::string> {};
+
+TEST_P(ShadingScenes, EqualReferenceForAnyThreadCount)
+{
+    const shading_perf::Scene scene = shading_perf::makeScene(GetParam(), 96);
+    const auto& m = scene.mesh;
+    const std::vector<Point2d> verts = rowsOf<Point2d>(m.verts2d);
+    const std::vector<Vec3i> faces = rowsOf<Vec3i>(m.faces);
+    const std::vector<Vec3d> colors = rowsOf<Vec3d>(m.vcolors);
+    const std::vector<double> depth = rowsOf<double>(m.depth);
+    const int saved = getNumThreads();
+    for (bool gouraud : {false, true}) {
+        const Mat expected = shading_ref::render(verts, faces, colors, depth, gouraud, scene.size);
+        Mat single;
+        for (int threads : {1, 2}) {
+            setNumThreads(threads);
+            Mat img;
+            shading::render(m.verts2d, m.faces, m.vcolors, m.depth, img,
+                            gouraud ? shading::SHADE_GOURAUD : shading::SHADE_FLAT, scene.size);
+            // Flat: neighbouring faces have different mean colours, so a pixel given to the wrong
+            // face shows; Gouraud: colours within float rounding of the double reference.
+            EXPECT_LE(shading_test::maxAbsDiff(img, expected), gouraud ? 1e-4 : 1e-6)
+                << scene.name << (gouraud ? " Gouraud" : " flat") << ", " << threads << " threads";
+            if (single.empty())
+                single = img;
+            else
+                EXPECT_EQ(shading_test::maxAbsDiff(img, single), 0.0) << scene.name;
+        }
+    }
+    setNumThreads(saved);
+}
+
+INSTANTIATE_TEST_SUITE_P(BenchmarkScenes, ShadingScenes,
+                         testing::Values("grid", "sphere", "random", "demo"));
