@@ -107,11 +107,13 @@ private:
     std::vector<uint64_t> bits_;
 };
 
-//! Rows per band: a band's canvas rows should stay in cache (about 96 KB) while it is drawn.
+/** Rows per band: about 96 KB of canvas, so a band's rows stay in cache while it is drawn, but
+at least 16 (tall faces are set up once per band they cross) and at most 32 (the band pass keeps
+one bit per row). */
 inline int bandRowsFor(const Mat& canvas)
 {
-    const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
-    return int(std::min<size_t>(32, std::max<size_t>(16, (96 << 10) / std::max<size_t>(rowBytes, 1))));  // <= 32: one bit per row
+    const size_t rowBytes = std::max<size_t>(size_t(canvas.cols) * canvas.elemSize(), 1);
+    return int(std::clamp<size_t>((96 << 10) / rowBytes, 16, 32));
 }
 
 /** A mesh as the band pass reads it: normalised and validated at the API edge. */
