@@ -174,14 +174,15 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             for (int k = r.begin / bandRows; k <= (r.end - 1) / bandRows; k++)
                 fn(k);
     };
-    std::vector<int> bandStart(bandCount + 1, 0);
+    // size_t: a face on a tall canvas can cross thousands of bands.
+    std::vector<size_t> bandStart(bandCount + 1, 0);
     for (const FaceRows& r : rows)
         forEachBand(r, [&](int k) { bandStart[k + 1]++; });
     for (int k = 0; k < bandCount; k++)
         bandStart[k + 1] += bandStart[k];
     std::vector<int> binned(bandStart[bandCount]);
     {
-        std::vector<int> cursor(bandStart.begin(), bandStart.end() - 1);
+        std::vector<size_t> cursor(bandStart.begin(), bandStart.end() - 1);
         for (int i = 0; i < faceCount; i++)
             forEachBand(rows[i], [&](int k) { binned[cursor[k]++] = i; });
     }
@@ -196,7 +197,7 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
             order.clear();
-            for (int k = bandStart[band + 1] - 1; k >= bandStart[band]; k--)
+            for (size_t k = bandStart[band + 1]; k-- > bandStart[band];)
                 order.emplace_back(byDepth ? keys[binned[k]] : 0, binned[k]);
             if (byDepth)
                 radixSortByKey(order, scratch);  // stable: equal keys stay later-face-first
