@@ -73,6 +73,20 @@ public:
     int claim(int row, int xBegin, int xEnd, RunFn&& run)
     {
         uint64_t* words = bits_.data() + size_t(row) * wordsPerRow_;
+        if ((xBegin >> 6) == ((xEnd - 1) >> 6)) {
+            // The common case for small faces: one word, and the span wholly new or wholly taken.
+            const int count = xEnd - xBegin;
+            const uint64_t span = (count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1)
+                                  << (xBegin & 63);
+            uint64_t& word = words[xBegin >> 6];
+            if ((word & span) == 0) {
+                word |= span;
+                run(xBegin, xEnd);
+                return count;
+            }
+            if ((word & span) == span)
+                return 0;
+        }
         int claimed = 0;
         for (int x = xBegin; x < xEnd;) {
             const int word = x >> 6, first = x & 63;

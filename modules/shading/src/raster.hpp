@@ -159,7 +159,9 @@ struct TriangleSetup {
 //! Pixel row bound ceil(y / 256) clamped to [0, limit].
 inline int clampedRow(int64_t fixedY, int limit)
 {
-    const int64_t row = ceilDiv<int64_t>(fixedY, kSubpixelOne);
+    // ceil(y / 256) as a shift: >> of a negative value is arithmetic on every compiler we build
+    // with (and defined so from C++20).
+    const int64_t row = (fixedY + kSubpixelOne - 1) >> kSubpixelBits;
     return int(std::min<int64_t>(std::max<int64_t>(row, 0), limit));
 }
 

@@ -97,7 +97,7 @@ struct GouraudShader {
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < 3; k++)
                 color[i][k] = c[order[i]][k];
-        invArea2 = 1.0 / double(edgeValue(p[0], p[1], p[2], t.narrow));
+        invArea2 = 1.0 / edgeValue(p[0], p[1], p[2], t.narrow);
         // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
         const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,
                               -double(p[0].y - p[2].y) * kSubpixelOne * invArea2,
@@ -110,22 +110,23 @@ struct GouraudShader {
                                         dw[2] * color[2][k], -maxStep, maxStep));
     }
 
-    //! Edge function of a -> b at q, exactly: (b - a) x (q - a).
-    static Int128 edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q,
+    //! Edge function of a -> b at q, (b - a) x (q - a), exact until its one rounding to double.
+    //! Narrow triangles stay in 64 bits: converting a 128-bit integer is a slow library call.
+    static double edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q,
                             bool narrow)
     {
         if (narrow)
-            return Int128((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x));
-        return Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x);
+            return double((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x));
+        return double(Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x));
     }
 
     void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
                     int xEnd) const
     {
         const FixedPoint q = {int64_t(spanBegin) * kSubpixelOne, int64_t(y) * kSubpixelOne};
-        const double w0 = double(edgeValue(t.mid, t.bottom, q, t.narrow)) * invArea2;
-        const double w1 = double(edgeValue(t.bottom, t.top, q, t.narrow)) * invArea2;
-        const double w2 = double(edgeValue(t.top, t.mid, q, t.narrow)) * invArea2;
+        const double w0 = edgeValue(t.mid, t.bottom, q, t.narrow) * invArea2;
+        const double w1 = edgeValue(t.bottom, t.top, q, t.narrow) * invArea2;
+        const double w2 = edgeValue(t.top, t.mid, q, t.narrow) * invArea2;
         float base[3];
         for (int k = 0; k < 3; k++)
             base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
