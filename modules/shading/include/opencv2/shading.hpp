@@ -76,6 +76,7 @@ were. The result is identical for any number of threads (`cv::setNumThreads`).
 @param faces K triangles, each 3 zero-based indices into `verts2d`.
 @param vcolors L vertex colours, in the canvas's units.
 @param depth L vertex depths (larger is farther), or empty to draw faces in the order given.
+A face whose mean depth is NaN has no place in the order and is not drawn.
 @param shadeType #SHADE_FLAT or #SHADE_GOURAUD.
 */
 CV_EXPORTS_W void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces,
