@@ -107,13 +107,6 @@ public:
         return claimed;
     }
 
-    //! claim() of the whole row [0, width): visits what no face covered.
-    template <typename RunFn>
-    void claimRest(int row, int width, RunFn&& run)
-    {
-        claim(row, 0, width, run);
-    }
-
 private:
     static int ctz(uint64_t v) { return __builtin_ctzll(v); }  // v != 0
 
@@ -257,7 +250,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                 const Vec<T, 3> bg = *background;
                 for (int y = y0; y < y1; y++) {
                     Vec<T, 3>* row = canvas.ptr<Vec<T, 3>>(y);
-                    coverage.claimRest(y - y0, size.width, [&](int a, int b) {
+                    // Claiming the whole row visits exactly what no face covered.
+                    coverage.claim(y - y0, 0, size.width, [&](int a, int b) {
                         std::fill(row + a, row + b, bg);
                     });
                 }

@@ -52,7 +52,6 @@ template <typename T>
 struct FlatShader {
     T color[3];
 
-    FlatShader() = default;
     FlatShader(const TriangleSetup&, const int*, const Vec3d c[3])
     {
         for (int k = 0; k < 3; k++)
@@ -90,7 +89,6 @@ struct GouraudShader {
     double invArea2;     //!< 1 / twice the signed area, in subpixel units
     float stepX[3];      //!< d(colour)/dx per pixel
 
-    GouraudShader() = default;
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d c[3])
     {
         const FixedPoint p[3] = {t.top, t.mid, t.bottom};
