@@ -18,7 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -36,23 +36,80 @@ inline uint64_t ascendingKey(double v)
     return (bits >> 63) ? ~bits : bits | (uint64_t(1) << 63);
 }
 
-/** Stable LSD radix sort of (key, value) pairs by key, 8 bits a pass; passes where every key
-has the same byte are skipped (depths in a narrow range share most high bytes). */
-inline void radixSortByKey(std::vector<std::pair<uint64_t, int>>& items,
-                           std::vector<std::pair<uint64_t, int>>& scratch)
+/** A face's entry in a band list: its quantized depth key in the high word, its index in the low
+word. Sorting entries by the high word only, stably, from lists in decreasing face order, gives
+the front-to-back order: nearer first, and among equal keys the later face first. */
+inline uint64_t bandEntry(uint32_t key32, int face)
 {
-    scratch.resize(items.size());
-    for (int shift = 0; shift < 64; shift += 8) {
-        size_t offset[257] = {};
-        for (const auto& item : items)
-            offset[((item.first >> shift) & 0xff) + 1]++;
-        if (std::find(offset + 1, offset + 257, items.size()) != offset + 257)
+    return uint64_t(key32) << 32 | uint32_t(face);
+}
+
+inline int entryFace(uint64_t entry)
+{
+    return int(uint32_t(entry));
+}
+
+/** Stable LSD radix sort of band entries by their high word, 8 bits a pass; bytes every entry
+shares are skipped (nearby depths share the high bytes). */
+inline void sortByHighWord(uint64_t* items, size_t n, std::vector<uint64_t>& scratch)
+{
+    if (n < 2)
+        return;
+    uint32_t count[4][256] = {};
+    for (size_t i = 0; i < n; i++) {
+        const uint32_t key = uint32_t(items[i] >> 32);
+        count[0][key & 0xff]++;
+        count[1][(key >> 8) & 0xff]++;
+        count[2][(key >> 16) & 0xff]++;
+        count[3][key >> 24]++;
+    }
+    scratch.resize(std::max(scratch.size(), n));
+    uint64_t* src = items;
+    uint64_t* dst = scratch.data();
+    for (int pass = 0; pass < 4; pass++) {
+        const int shift = 32 + 8 * pass;
+        uint32_t* c = count[pass];
+        if (c[(items[0] >> shift) & 0xff] == n)
             continue;
-        for (int b = 0; b < 256; b++)
-            offset[b + 1] += offset[b];
-        for (const auto& item : items)
-            scratch[offset[(item.first >> shift) & 0xff]++] = item;
-        items.swap(scratch);
+        uint32_t sum = 0;
+        for (int b = 0; b < 256; b++) {
+            const uint32_t k = c[b];
+            c[b] = sum;
+            sum += k;
+        }
+        for (size_t i = 0; i < n; i++)
+            dst[c[(src[i] >> shift) & 0xff]++] = src[i];
+        std::swap(src, dst);
+    }
+    if (src != items)
+        std::copy(src, src + n, items);
+}
+
+/** Completes the order of entries sorted by quantized key: within each run of equal quantized
+keys, orders by the exact key (ascending), then by face (descending). Runs are short unless
+many depths crowd into one quantization step; long ones are sorted in O(n log n). */
+inline void refineEqualKeys(uint64_t* items, size_t n, const uint64_t* exactKeys)
+{
+    auto frontFirst = [exactKeys](uint64_t a, uint64_t b) {
+        const uint64_t ka = exactKeys[entryFace(a)], kb = exactKeys[entryFace(b)];
+        return ka < kb || (ka == kb && entryFace(a) > entryFace(b));
+    };
+    for (size_t begin = 0; begin + 1 < n;) {
+        size_t end = begin + 1;
+        while (end < n && (items[end] >> 32) == (items[begin] >> 32))
+            end++;
+        if (end - begin > 16) {
+            std::sort(items + begin, items + end, frontFirst);
+        } else {
+            for (size_t i = begin + 1; i < end; i++) {  // insertion sort
+                const uint64_t item = items[i];
+                size_t j = i;
+                for (; j > begin && frontFirst(item, items[j - 1]); j--)
+                    items[j] = items[j - 1];
+                items[j] = item;
+            }
+        }
+        begin = end;
     }
 }
 
@@ -76,8 +133,7 @@ public:
         if ((xBegin >> 6) == ((xEnd - 1) >> 6)) {
             // The common case for small faces: one word, and the span wholly new or wholly taken.
             const int count = xEnd - xBegin;
-            const uint64_t span = (count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1)
-                                  << (xBegin & 63);
+            const uint64_t span = (~uint64_t(0) >> (64 - count)) << (xBegin & 63);
             uint64_t& word = words[xBegin >> 6];
             if ((word & span) == 0) {
                 word |= span;
@@ -87,11 +143,18 @@ public:
             if ((word & span) == span)
                 return 0;
         }
+        return claimRuns(words, xBegin, xEnd, run);
+    }
+
+private:
+    template <typename RunFn>
+    __attribute__((noinline)) static int claimRuns(uint64_t* words, int xBegin, int xEnd, RunFn& run)
+    {
         int claimed = 0;
         for (int x = xBegin; x < xEnd;) {
             const int word = x >> 6, first = x & 63;
             const int count = std::min(xEnd - x, 64 - first);
-            const uint64_t span = (count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1) << first;
+            const uint64_t span = (~uint64_t(0) >> (64 - count)) << first;
             uint64_t fresh = span & ~words[word];
             words[word] |= span;
             while (fresh) {
@@ -107,7 +170,6 @@ public:
         return claimed;
     }
 
-private:
     static int ctz(uint64_t v) { return __builtin_ctzll(v); }  // v != 0
 
     int wordsPerRow_;
@@ -153,98 +215,165 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             snapped[i] = snapToGrid(mesh.vertices[i]);
     });
 
-    // Pass 1, parallel over faces: the sort key and the rows each face may touch.
+    // Pass 1, parallel over faces: the sort key and the rows each face may touch, and the range
+    // of the keys per chunk (for quantizing them below).
     struct FaceRows {
         int begin, end;  //!< rows [begin, end); empty: culled
     };
     std::vector<uint64_t> keys(byDepth ? faceCount : 0);
     std::vector<FaceRows> rows(faceCount);
-    parallel_for_(Range(0, (faceCount + kChunk - 1) / kChunk), [&](const Range& chunks) {
-        const int end = std::min(faceCount, chunks.end * kChunk);
-        for (int i = chunks.start * kChunk; i < end; i++) {
-            const Vec3i& f = mesh.faces[i];
-            rows[i] = {0, 0};
-            if (byDepth) {
-                const double mean = (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
-                if (std::isnan(mean))
-                    continue;  // no place in the order: not drawn
-                keys[i] = ascendingKey(mean);
+    const int chunkCount = (faceCount + kChunk - 1) / kChunk;
+    std::vector<std::pair<uint64_t, uint64_t>> chunkKeyRange(chunkCount, {UINT64_MAX, 0});
+    parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
+        for (int chunk = chunks.start; chunk < chunks.end; chunk++) {
+            uint64_t lo = UINT64_MAX, hi = 0;
+            const int end = std::min(faceCount, (chunk + 1) * kChunk);
+            for (int i = chunk * kChunk; i < end; i++) {
+                const Vec3i& f = mesh.faces[i];
+                rows[i] = {0, 0};
+                if (byDepth) {
+                    const double mean =
+                        (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
+                    if (std::isnan(mean))
+                        continue;  // no place in the order: not drawn
+                    keys[i] = ascendingKey(mean);
+                    lo = std::min(lo, keys[i]);
+                    hi = std::max(hi, keys[i]);
+                }
+                const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
+                triangleRows(p, size, rows[i].begin, rows[i].end);
             }
-            const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-            triangleRows(p, size, rows[i].begin, rows[i].end);
+            chunkKeyRange[chunk] = {lo, hi};
         }
     });
 
-    // Pass 2: face indices binned by band, in face order (a counting sort).
+    // Keys are sorted by 32 bits: (key - minKey) >> keyShift. When the keys span more than 32
+    // bits, faces sharing a quantized key are ordered exactly afterwards (refineEqualKeys).
+    uint64_t minKey = UINT64_MAX, maxKey = 0;
+    for (const auto& range : chunkKeyRange) {
+        minKey = std::min(minKey, range.first);
+        maxKey = std::max(maxKey, range.second);
+    }
+    int keyShift = 0;
+    if (minKey < maxKey)
+        while (((maxKey - minKey) >> keyShift) > UINT32_MAX)
+            keyShift++;
+    auto quantizedKey = [&](int face) {
+        return byDepth ? uint32_t((keys[face] - minKey) >> keyShift) : uint32_t(0);
+    };
+
+    // Pass 2, parallel over chunks of faces: the entries binned by band (a counting sort), each
+    // band's list in decreasing face order.
     auto forEachBand = [&](const FaceRows& r, auto&& fn) {
         if (r.begin < r.end)
             for (int k = r.begin / bandRows; k <= (r.end - 1) / bandRows; k++)
                 fn(k);
     };
+    const int binChunks = std::min(chunkCount, 16);  // bounds the count table
+    const int facesPerBinChunk = binChunks ? (faceCount + binChunks - 1) / binChunks : 0;
     // size_t: a face on a tall canvas can cross thousands of bands.
+    std::vector<size_t> binCursor(size_t(binChunks) * bandCount, 0);
+    parallel_for_(Range(0, binChunks), [&](const Range& chunks) {
+        for (int c = chunks.start; c < chunks.end; c++) {
+            size_t* count = &binCursor[size_t(c) * bandCount];
+            const int end = std::min(faceCount, (c + 1) * facesPerBinChunk);
+            for (int i = c * facesPerBinChunk; i < end; i++)
+                forEachBand(rows[i], [&](int k) { count[k]++; });
+        }
+    });
     std::vector<size_t> bandStart(bandCount + 1, 0);
-    for (const FaceRows& r : rows)
-        forEachBand(r, [&](int k) { bandStart[k + 1]++; });
-    for (int k = 0; k < bandCount; k++)
-        bandStart[k + 1] += bandStart[k];
-    std::vector<int> binned(bandStart[bandCount]);
-    {
-        std::vector<size_t> cursor(bandStart.begin(), bandStart.end() - 1);
-        for (int i = 0; i < faceCount; i++)
-            forEachBand(rows[i], [&](int k) { binned[cursor[k]++] = i; });
+    for (int k = 0; k < bandCount; k++) {
+        size_t next = bandStart[k];
+        for (int c = binChunks; c-- > 0;) {  // later chunks first: decreasing face order
+            const size_t count = binCursor[size_t(c) * bandCount + k];
+            binCursor[size_t(c) * bandCount + k] = next;
+            next += count;
+        }
+        bandStart[k + 1] = next;
     }
+    std::vector<uint64_t> binned(bandStart[bandCount]);
+    parallel_for_(Range(0, binChunks), [&](const Range& chunks) {
+        for (int c = chunks.start; c < chunks.end; c++) {
+            size_t* cursor = &binCursor[size_t(c) * bandCount];
+            const int begin = c * facesPerBinChunk;
+            for (int i = std::min(faceCount, begin + facesPerBinChunk); i-- > begin;) {
+                const uint64_t entry = bandEntry(quantizedKey(i), i);
+                forEachBand(rows[i], [&](int k) { binned[cursor[k]++] = entry; });
+            }
+        }
+    });
 
     // Pass 3, parallel over bands: order the band's faces front to back, then draw them.
+    uchar* const canvasData = canvas.data;
+    const size_t canvasStep = canvas.step[0];
+    const int width = size.width;
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
-        CoverageBits coverage(bandRows, size.width);
-        std::vector<std::pair<uint64_t, int>> order, scratch;
-        std::vector<int> rowLeft(bandRows);
+        CoverageBits coverage(bandRows, width);
+        std::vector<uint64_t> scratch;
+        int rowLeft[32];  // pixels of each band row not yet final
+        struct BatchFace {
+            TriangleSetup triangle;
+            Shader shader;
+        };
+        static_assert(std::is_trivially_destructible<BatchFace>::value,
+                      "batch entries are overwritten in place, never destroyed");
+        constexpr int kBatch = 32;
+        // Raw storage: the shaders have no default constructor and need none.
+        alignas(BatchFace) unsigned char batchStorage[kBatch * sizeof(BatchFace)];
+        BatchFace* const batch = reinterpret_cast<BatchFace*>(batchStorage);
         for (int band = range.start; band < range.end; band++) {
             const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
-            order.clear();
-            for (size_t k = bandStart[band + 1]; k-- > bandStart[band];)
-                order.emplace_back(byDepth ? keys[binned[k]] : 0, binned[k]);
-            if (byDepth)
-                radixSortByKey(order, scratch);  // stable: equal keys stay later-face-first
+            uint64_t* order = binned.data() + bandStart[band];
+            const size_t orderSize = bandStart[band + 1] - bandStart[band];
+            if (byDepth) {
+                sortByHighWord(order, orderSize, scratch);
+                if (keyShift > 0)
+                    refineEqualKeys(order, orderSize, keys.data());
+            }
 
             coverage.clear();
-            std::fill(rowLeft.begin(), rowLeft.end(), size.width);
+            std::fill(rowLeft, rowLeft + bandRows, width);
             uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
-            for (size_t k = 0; k < order.size() && fullRows != allRows; k++) {
-                const int face = order[k].second;
-                // Skip a face whose rows here are all final before touching its vertices.
-                const int r0 = std::max(rows[face].begin, y0) - y0;
-                const int r1 = std::min(rows[face].end, y1) - y0;
-                const uint32_t faceRows = uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0));
-                if ((faceRows & ~fullRows) == 0)
-                    continue;
-                const Vec3i& f = mesh.faces[face];
-                const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                TriangleSetup triangle;
-                int vertexOrder[3];
-                if (!setupTriangle(p, size, triangle, vertexOrder))
-                    continue;
-                // Built on the first pixel this face wins: hidden faces never read colours.
-                std::optional<Shader> shader;
-                walkTriangle(triangle, y0, y1, size.width, [&](int y, int xBegin, int xEnd) {
-                    int& left = rowLeft[y - y0];
-                    if (left == 0)
-                        return;
-                    T* row = canvas.ptr<T>(y);
-                    left -= coverage.claim(y - y0, xBegin, xEnd, [&](int a, int b) {
-                        if (!shader) {
-                            const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]],
-                                                mesh.colors[f[2]]};
-                            shader.emplace(triangle, vertexOrder, c);
-                        }
-                        (*shader)(triangle, row, y, xBegin, a, b);
+            auto hidden = [&](int rowBegin, int rowEnd) {  // all its rows here are final
+                const int r0 = std::max(rowBegin, y0) - y0, r1 = std::min(rowEnd, y1) - y0;
+                return (uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows) == 0;
+            };
+            for (size_t next = 0; next < orderSize && fullRows != allRows;) {
+                // Set up a batch of faces, then draw it: the setups are independent of each
+                // other, so their memory reads overlap instead of stalling face after face.
+                int batchSize = 0;
+                for (; next < orderSize && batchSize < kBatch; next++) {
+                    const int face = entryFace(order[next]);
+                    if (hidden(rows[face].begin, rows[face].end))
+                        continue;  // skipped before its vertices are read
+                    const Vec3i& f = mesh.faces[face];
+                    const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
+                    TriangleSetup triangle;
+                    int vertexOrder[3];
+                    if (!setupTriangle(p, size, triangle, vertexOrder))
+                        continue;
+                    const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
+                    new (&batch[batchSize++]) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
+                }
+                for (int i = 0; i < batchSize; i++) {
+                    const BatchFace& bf = batch[i];
+                    if (hidden(bf.triangle.rowBegin, bf.triangle.rowEnd))
+                        continue;
+                    walkTriangle(bf.triangle, y0, y1, width, [&](int y, int xBegin, int xEnd) {
+                        const int r = y - y0;
+                        if (rowLeft[r] == 0)
+                            return;
+                        T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                        rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {
+                            bf.shader(bf.triangle, row, y, xBegin, a, b);
+                        });
+                        if (rowLeft[r] == 0)
+                            fullRows |= uint32_t(1) << r;
                     });
-                    if (left == 0)
-                        fullRows |= uint32_t(1) << (y - y0);
-                });
+                }
             }
             if (background) {
                 const Vec<T, 3> bg = *background;

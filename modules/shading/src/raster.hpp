@@ -75,21 +75,22 @@ inline T ceilDiv(T a, T b)  // b > 0
     return -floorDiv<T>(-a, b);
 }
 
-/** ceil(n / d) for d > 0, |n| < 2^60 and a quotient below 2^40, with rem = result * d - n in
-[0, d). A floating-point quotient is within one of the true one and is corrected exactly in
-integers: several times faster than a 64-bit integer division on common CPUs. */
+/** ceil(n / d) for d > 0, |n| < 2^60 and |n / d| < 2^40, with rem = result * d - n in [0, d).
+The rounded floating-point quotient's ceiling is within one of the true one (|error| < 1/8 for
+these ranges) and is corrected exactly in integers, without branches: several times faster than
+a 64-bit integer division, and the correction's direction is data-dependent (unpredictable). */
 inline int64_t ceilDivNarrow(int64_t n, int64_t d, int64_t& rem)
 {
-    int64_t q = int64_t(double(n) / double(d));
-    int64_t r = n - q * d;  // exact
-    while (r > 0) {         // make q * d >= n
-        q++;
-        r -= d;
-    }
-    while (r <= -d) {       // make (q - 1) * d < n
-        q--;
-        r += d;
-    }
+    const double c = double(n) / double(d);
+    int64_t q = int64_t(c);      // truncated toward zero ...
+    q += double(q) < c;          // ... and now ceil(c)
+    int64_t r = n - q * d;       // exact; the answer needs r in (-d, 0]
+    const int64_t up = r > 0;    // q * d < n: one more
+    q += up;
+    r -= up * d;
+    const int64_t down = r <= -d;  // (q - 1) * d >= n: one less
+    q -= down;
+    r += down * d;
     rem = -r;
     return q;
 }
@@ -235,7 +236,8 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
 }
 
 /** Calls spanFn(row, xBegin, xEnd) for every non-empty span of t within rows
-[rowFirst, rowLast) and columns [0, width). */
+[rowFirst, rowLast) and columns [0, width). One loop over both halves (the short edge restarts at
+the middle vertex's row) keeps the walk inlined and its state in registers. */
 template <typename SpanFn>
 inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int width,
                          SpanFn&& spanFn)
@@ -246,26 +248,23 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
         return;
     EdgeWalker longEdge, shortEdge;
     longEdge.start(t.top, t.bottom, begin, t.narrow);
-    auto emitRows = [&](int r0, int r1) {
-        const EdgeWalker& left = t.longEdgeLeft ? longEdge : shortEdge;
-        const EdgeWalker& right = t.longEdgeLeft ? shortEdge : longEdge;
-        for (int row = r0; row < r1; row++) {
-            const int64_t xl = std::max<int64_t>(left.x, 0);
-            const int64_t xr = std::min<int64_t>(right.x, width);
-            if (xl < xr)
-                spanFn(row, int(xl), int(xr));
-            longEdge.nextRow();
-            shortEdge.nextRow();
-        }
-    };
-    const int mid = std::min(std::max(t.rowMid, begin), end);
-    if (begin < mid) {
+    int restartRow = end;  // where the lower short edge takes over, if within [begin, end)
+    if (t.rowMid > begin) {
         shortEdge.start(t.top, t.mid, begin, t.narrow);
-        emitRows(begin, mid);
+        restartRow = std::min(t.rowMid, end);
+    } else {
+        shortEdge.start(t.mid, t.bottom, begin, t.narrow);
     }
-    if (mid < end) {
-        shortEdge.start(t.mid, t.bottom, mid, t.narrow);
-        emitRows(mid, end);
+    const bool longLeft = t.longEdgeLeft;
+    for (int row = begin; row < end; row++) {
+        if (row == restartRow)
+            shortEdge.start(t.mid, t.bottom, row, t.narrow);
+        const int64_t xl = std::max<int64_t>(longLeft ? longEdge.x : shortEdge.x, 0);
+        const int64_t xr = std::min<int64_t>(longLeft ? shortEdge.x : longEdge.x, width);
+        if (xl < xr)
+            spanFn(row, int(xl), int(xr));
+        longEdge.nextRow();
+        shortEdge.nextRow();
     }
 }
 

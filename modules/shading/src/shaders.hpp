@@ -47,6 +47,25 @@ inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, co
     }
 }
 
+/** Sets pixels [xBegin, xEnd) of a float RGB row to `color`, with the same 16-byte stores and
+scalar last pixel as storeFloatPixels. */
+inline void fillFloatPixels(float* row, int xBegin, int xEnd, const float color[3])
+{
+    float* p = row + 3 * xBegin;
+    float* const last = row + 3 * (xEnd - 1);
+#if CV_SIMD128
+    const v_float32x4 c(color[0], color[1], color[2], color[0]);
+    for (; p < last; p += 3)
+        v_store(p, c);
+#else
+    for (; p < last; p += 3)
+        p[0] = color[0], p[1] = color[1], p[2] = color[2];
+#endif
+    last[0] = color[0];
+    last[1] = color[1];
+    last[2] = color[2];
+}
+
 /** Flat shading: the mean of the vertex colours, taken in the order the vertices were given. */
 template <typename T>
 struct FlatShader {
@@ -62,8 +81,7 @@ struct FlatShader {
                     int xEnd) const
     {
         if constexpr (std::is_same<T, float>::value) {
-            static const float zero[3] = {0, 0, 0};  // base + 0 * i == base
-            storeFloatPixels(row, xBegin, xBegin, xEnd, color, zero);
+            fillFloatPixels(row, xBegin, xEnd, color);
             return;
         }
         const T c0 = color[0], c1 = color[1], c2 = color[2];
