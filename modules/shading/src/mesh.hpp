@@ -11,6 +11,7 @@
 #define OPENCV_SHADING_MESH_HPP
 
 #include "raster.hpp"
+#include "shaders.hpp"
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utility.hpp>
@@ -219,6 +220,7 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     // of the keys per chunk (for quantizing them below).
     struct FaceRows {
         int begin, end;  //!< rows [begin, end); empty: culled
+        float area;      //!< in pixels, for estimating each band's overdraw
     };
     std::vector<uint64_t> keys(byDepth ? faceCount : 0);
     std::vector<FaceRows> rows(faceCount);
@@ -230,7 +232,7 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             const int end = std::min(faceCount, (chunk + 1) * kChunk);
             for (int i = chunk * kChunk; i < end; i++) {
                 const Vec3i& f = mesh.faces[i];
-                rows[i] = {0, 0};
+                rows[i] = {0, 0, 0.f};
                 if (byDepth) {
                     const double mean =
                         (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
@@ -241,7 +243,10 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     hi = std::max(hi, keys[i]);
                 }
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                triangleRows(p, size, rows[i].begin, rows[i].end);
+                if (triangleRows(p, size, rows[i].begin, rows[i].end))
+                    rows[i].area = float(std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
+                                                  double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
+                                         (0.5 / double(kSubpixelOne * kSubpixelOne)));
             }
             chunkKeyRange[chunk] = {lo, hi};
         }
@@ -273,21 +278,33 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     const int facesPerBinChunk = binChunks ? (faceCount + binChunks - 1) / binChunks : 0;
     // size_t: a face on a tall canvas can cross thousands of bands.
     std::vector<size_t> binCursor(size_t(binChunks) * bandCount, 0);
+    std::vector<double> binArea(size_t(binChunks) * bandCount, 0.0);
     parallel_for_(Range(0, binChunks), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
             size_t* count = &binCursor[size_t(c) * bandCount];
+            double* area = &binArea[size_t(c) * bandCount];
             const int end = std::min(faceCount, (c + 1) * facesPerBinChunk);
-            for (int i = c * facesPerBinChunk; i < end; i++)
-                forEachBand(rows[i], [&](int k) { count[k]++; });
+            for (int i = c * facesPerBinChunk; i < end; i++) {
+                const FaceRows& r = rows[i];
+                const double areaPerRow = r.area / std::max(r.end - r.begin, 1);
+                forEachBand(r, [&](int k) {
+                    count[k]++;
+                    const int inBand = std::min(r.end, (k + 1) * bandRows) -
+                                       std::max(r.begin, k * bandRows);
+                    area[k] += areaPerRow * inBand;
+                });
+            }
         }
     });
     std::vector<size_t> bandStart(bandCount + 1, 0);
+    std::vector<double> bandArea(bandCount, 0.0);  // covered samples, counted with overdraw
     for (int k = 0; k < bandCount; k++) {
         size_t next = bandStart[k];
         for (int c = binChunks; c-- > 0;) {  // later chunks first: decreasing face order
             const size_t count = binCursor[size_t(c) * bandCount + k];
             binCursor[size_t(c) * bandCount + k] = next;
             next += count;
+            bandArea[k] += binArea[size_t(c) * bandCount + k];
         }
         bandStart[k + 1] = next;
     }
@@ -318,6 +335,10 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
         static_assert(std::is_trivially_destructible<BatchFace>::value,
                       "batch entries are overwritten in place, never destroyed");
         constexpr int kBatch = 32;
+        // A band is drawn back to front, without a coverage mask, when the samples it would
+        // shade more than once (estimated from face areas) are fewer than this many per face:
+        // rewriting a few pixels costs less than the mask's work on every span of small faces.
+        constexpr double kOverdrawPerFaceBackToFront = 32;
         // Raw storage: the shaders have no default constructor and need none.
         alignas(BatchFace) unsigned char batchStorage[kBatch * sizeof(BatchFace)];
         BatchFace* const batch = reinterpret_cast<BatchFace*>(batchStorage);
@@ -333,6 +354,45 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     refineEqualKeys(order, orderSize, keys.data());
             }
 
+            // Sets up order[k] into `out`; false when it covers nothing.
+            auto prepare = [&](size_t k, BatchFace& out) {
+                const Vec3i& f = mesh.faces[entryFace(order[k])];
+                const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
+                TriangleSetup triangle;
+                int vertexOrder[3];
+                if (!setupTriangle(p, size, triangle, vertexOrder))
+                    return false;
+                const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
+                new (&out) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
+                return true;
+            };
+            // Faces are set up a batch at a time, then drawn: the setups are independent of
+            // each other, so their memory reads overlap instead of stalling face after face.
+
+            const double overdraw = bandArea[band] - double(y1 - y0) * width;
+            if (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize)) {
+                // Little overdraw: the painter's way is cheaper here. Background first, then
+                // every face back to front, overwriting; no coverage bookkeeping.
+                if (background)
+                    for (int y = y0; y < y1; y++)
+                        fillPixels(canvas.ptr<T>(y), 0, width, background->val);
+                for (size_t next = orderSize; next > 0;) {
+                    int batchSize = 0;
+                    for (; next > 0 && batchSize < kBatch; next--)
+                        batchSize += prepare(next - 1, batch[batchSize]);
+                    for (int i = 0; i < batchSize; i++) {
+                        const BatchFace& bf = batch[i];
+                        walkTriangle(bf.triangle, y0, y1, width, [&](int y, int xBegin, int xEnd) {
+                            T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                            bf.shader(bf.triangle, row, y, xBegin, xBegin, xEnd);
+                        });
+                    }
+                }
+                continue;
+            }
+
+            // Front to back with a coverage mask: each pixel is written once, by its first
+            // (frontmost) face, and faces behind finished rows are skipped unread.
             coverage.clear();
             std::fill(rowLeft, rowLeft + bandRows, width);
             uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
@@ -342,21 +402,11 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                 return (uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows) == 0;
             };
             for (size_t next = 0; next < orderSize && fullRows != allRows;) {
-                // Set up a batch of faces, then draw it: the setups are independent of each
-                // other, so their memory reads overlap instead of stalling face after face.
                 int batchSize = 0;
                 for (; next < orderSize && batchSize < kBatch; next++) {
                     const int face = entryFace(order[next]);
-                    if (hidden(rows[face].begin, rows[face].end))
-                        continue;  // skipped before its vertices are read
-                    const Vec3i& f = mesh.faces[face];
-                    const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                    TriangleSetup triangle;
-                    int vertexOrder[3];
-                    if (!setupTriangle(p, size, triangle, vertexOrder))
-                        continue;
-                    const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
-                    new (&batch[batchSize++]) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
+                    if (!hidden(rows[face].begin, rows[face].end))  // else skipped unread
+                        batchSize += prepare(next, batch[batchSize]);
                 }
                 for (int i = 0; i < batchSize; i++) {
                     const BatchFace& bf = batch[i];
@@ -376,12 +426,11 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                 }
             }
             if (background) {
-                const Vec<T, 3> bg = *background;
                 for (int y = y0; y < y1; y++) {
-                    Vec<T, 3>* row = canvas.ptr<Vec<T, 3>>(y);
+                    T* row = canvas.ptr<T>(y);
                     // Claiming the whole row visits exactly what no face covered.
-                    coverage.claim(y - y0, 0, size.width, [&](int a, int b) {
-                        std::fill(row + a, row + b, bg);
+                    coverage.claim(y - y0, 0, width, [&](int a, int b) {
+                        fillPixels(row, a, b, background->val);
                     });
                 }
             }

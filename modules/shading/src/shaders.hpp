@@ -47,23 +47,35 @@ inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, co
     }
 }
 
-/** Sets pixels [xBegin, xEnd) of a float RGB row to `color`, with the same 16-byte stores and
-scalar last pixel as storeFloatPixels. */
-inline void fillFloatPixels(float* row, int xBegin, int xEnd, const float color[3])
+/** Sets pixels [xBegin, xEnd) of an RGB row to `color`, touching nothing outside them. Float
+rows are written with 16-byte stores: four pixels per three stores in long runs, one per pixel
+(its fourth lane overwritten by the next pixel's store) in short ones. */
+template <typename T>
+inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 {
-    float* p = row + 3 * xBegin;
-    float* const last = row + 3 * (xEnd - 1);
+    T* p = row + 3 * xBegin;
+    T* const end = row + 3 * xEnd;
 #if CV_SIMD128
-    const v_float32x4 c(color[0], color[1], color[2], color[0]);
-    for (; p < last; p += 3)
-        v_store(p, c);
-#else
-    for (; p < last; p += 3)
-        p[0] = color[0], p[1] = color[1], p[2] = color[2];
+    if constexpr (std::is_same<T, float>::value) {
+        const v_float32x4 c0(color[0], color[1], color[2], color[0]);
+        if (xEnd - xBegin >= 8) {
+            const v_float32x4 c1(color[1], color[2], color[0], color[1]);
+            const v_float32x4 c2(color[2], color[0], color[1], color[2]);
+            for (; end - p >= 12; p += 12) {
+                v_store(p, c0);
+                v_store(p + 4, c1);
+                v_store(p + 8, c2);
+            }
+        }
+        for (; end - p > 3; p += 3)
+            v_store(p, c0);
+    }
 #endif
-    last[0] = color[0];
-    last[1] = color[1];
-    last[2] = color[2];
+    for (; p < end; p += 3) {
+        p[0] = color[0];
+        p[1] = color[1];
+        p[2] = color[2];
+    }
 }
 
 /** Flat shading: the mean of the vertex colours, taken in the order the vertices were given. */
@@ -80,16 +92,7 @@ struct FlatShader {
     void operator()(const TriangleSetup&, T* row, int /*y*/, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
-        if constexpr (std::is_same<T, float>::value) {
-            fillFloatPixels(row, xBegin, xEnd, color);
-            return;
-        }
-        const T c0 = color[0], c1 = color[1], c2 = color[2];
-        for (int x = xBegin; x < xEnd; x++) {
-            row[3 * x] = c0;
-            row[3 * x + 1] = c1;
-            row[3 * x + 2] = c2;
-        }
+        fillPixels(row, xBegin, xEnd, color);
     }
 };
 
@@ -106,10 +109,23 @@ struct GouraudShader {
     double color[3][3];  //!< color[vertex][channel], vertices in the setup's canonical order
     double invArea2;     //!< 1 / twice the signed area, in subpixel units
     float stepX[3];      //!< d(colour)/dx per pixel
+    //! Narrow triangles: edge function i (opposite vertex i) at pixel (x, y) is
+    //! edgeAt0[i] + edgeDx[i] * x + edgeDy[i] * y, exactly, in 64 bits.
+    int64_t edgeAt0[3], edgeDx[3], edgeDy[3];
 
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d c[3])
     {
         const FixedPoint p[3] = {t.top, t.mid, t.bottom};
+        if (t.narrow) {
+            const FixedPoint origin = {0, 0};
+            for (int i = 0; i < 3; i++) {
+                const FixedPoint& a = p[(i + 1) % 3];
+                const FixedPoint& b = p[(i + 2) % 3];
+                edgeAt0[i] = (b.x - a.x) * (origin.y - a.y) - (b.y - a.y) * (origin.x - a.x);
+                edgeDx[i] = -(b.y - a.y) * kSubpixelOne;
+                edgeDy[i] = (b.x - a.x) * kSubpixelOne;
+            }
+        }
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < 3; k++)
                 color[i][k] = c[order[i]][k];
@@ -139,10 +155,17 @@ struct GouraudShader {
     void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
                     int xEnd) const
     {
-        const FixedPoint q = {int64_t(spanBegin) * kSubpixelOne, int64_t(y) * kSubpixelOne};
-        const double w0 = edgeValue(t.mid, t.bottom, q, t.narrow) * invArea2;
-        const double w1 = edgeValue(t.bottom, t.top, q, t.narrow) * invArea2;
-        const double w2 = edgeValue(t.top, t.mid, q, t.narrow) * invArea2;
+        double w0, w1, w2;
+        if (t.narrow) {  // the same integers as edgeValue's, from precomputed coefficients
+            w0 = double(edgeAt0[0] + edgeDx[0] * spanBegin + edgeDy[0] * y) * invArea2;
+            w1 = double(edgeAt0[1] + edgeDx[1] * spanBegin + edgeDy[1] * y) * invArea2;
+            w2 = double(edgeAt0[2] + edgeDx[2] * spanBegin + edgeDy[2] * y) * invArea2;
+        } else {
+            const FixedPoint q = {int64_t(spanBegin) * kSubpixelOne, int64_t(y) * kSubpixelOne};
+            w0 = edgeValue(t.mid, t.bottom, q, false) * invArea2;
+            w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
+            w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
+        }
         float base[3];
         for (int k = 0; k < 3; k++)
             base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
