@@ -194,6 +194,36 @@ struct MeshData {
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order
 };
 
+//! A face's rows on the canvas and its area, from the key pass.
+struct FaceRows {
+    int begin, end;  //!< rows [begin, end); empty: culled
+    float area;      //!< in pixels, for estimating each band's overdraw
+};
+
+/** The per-face and per-vertex buffers of a mesh draw, kept by each calling thread between calls:
+fresh ones would be fresh pages, and their page faults cost more than drawing a small mesh. */
+struct MeshWorkspace {
+    std::vector<FixedPoint> snapped;  //!< per vertex
+    std::vector<uint64_t> keys;       //!< per face
+    std::vector<FaceRows> rows;       //!< per face
+    std::vector<uint64_t> binned;     //!< per face and band it crosses
+
+    //! Calls after one that needed more than this reallocate instead of holding it.
+    static constexpr size_t kKeepBytes = size_t(64) << 20;
+
+    size_t capacityBytes() const
+    {
+        return snapped.capacity() * sizeof(FixedPoint) + keys.capacity() * sizeof(uint64_t) +
+               rows.capacity() * sizeof(FaceRows) + binned.capacity() * sizeof(uint64_t);
+    }
+
+    static MeshWorkspace& ofThisThread()
+    {
+        thread_local MeshWorkspace workspace;
+        return workspace;
+    }
+};
+
 /** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
 order), writing each covered pixel once. With `background`, pixels no face covers are set to it
 (so render() writes every pixel exactly once, with no separate clear). */
@@ -208,7 +238,9 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
 
     // Pass 0, parallel over vertices: snap each once (a vertex is shared by ~6 faces).
     const int vertexCount = int(mesh.vertices.size());
-    std::vector<FixedPoint> snapped(vertexCount);
+    MeshWorkspace& work = MeshWorkspace::ofThisThread();
+    std::vector<FixedPoint>& snapped = work.snapped;
+    snapped.resize(vertexCount);
     constexpr int kChunk = 4096;
     parallel_for_(Range(0, (vertexCount + kChunk - 1) / kChunk), [&](const Range& chunks) {
         const int end = std::min(vertexCount, chunks.end * kChunk);
@@ -218,12 +250,10 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
 
     // Pass 1, parallel over faces: the sort key and the rows each face may touch, and the range
     // of the keys per chunk (for quantizing them below).
-    struct FaceRows {
-        int begin, end;  //!< rows [begin, end); empty: culled
-        float area;      //!< in pixels, for estimating each band's overdraw
-    };
-    std::vector<uint64_t> keys(byDepth ? faceCount : 0);
-    std::vector<FaceRows> rows(faceCount);
+    std::vector<uint64_t>& keys = work.keys;  // culled faces keep stale keys, never used
+    keys.resize(byDepth ? faceCount : 0);
+    std::vector<FaceRows>& rows = work.rows;
+    rows.resize(faceCount);
     const int chunkCount = (faceCount + kChunk - 1) / kChunk;
     std::vector<std::pair<uint64_t, uint64_t>> chunkKeyRange(chunkCount, {UINT64_MAX, 0});
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
@@ -308,7 +338,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
         }
         bandStart[k + 1] = next;
     }
-    std::vector<uint64_t> binned(bandStart[bandCount]);
+    std::vector<uint64_t>& binned = work.binned;
+    binned.resize(bandStart[bandCount]);
     parallel_for_(Range(0, binChunks), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
             size_t* cursor = &binCursor[size_t(c) * bandCount];
@@ -436,6 +467,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             }
         }
     });
+    if (work.capacityBytes() > MeshWorkspace::kKeepBytes)
+        work = MeshWorkspace();
 }
 
 }  // namespace detail

@@ -75,17 +75,17 @@ inline T ceilDiv(T a, T b)  // b > 0
     return -floorDiv<T>(-a, b);
 }
 
-/** ceil(n / d) for d > 0, |n| < 2^60 and |n / d| < 2^40, with rem = result * d - n in [0, d).
-The rounded floating-point quotient's ceiling is within one of the true one (|error| < 1/8 for
-these ranges) and is corrected exactly in integers, without branches: several times faster than
-a 64-bit integer division, and the correction's direction is data-dependent (unpredictable). */
-inline int64_t ceilDivNarrow(int64_t n, int64_t d, int64_t& rem)
+/** ceil(n / d) for d > 0, |n| < 2^60 and |n / d| < 2^40, with rem = result * d - n in [0, d),
+from `quotient`, n / d computed in floating point (within 1/4 of the true value for these ranges).
+Its ceiling is within one of the answer and is corrected exactly in integers, without branches
+(the correction's direction is data-dependent): several times faster than a 64-bit integer
+division. */
+inline int64_t ceilDivNarrow(int64_t n, int64_t d, double quotient, int64_t& rem)
 {
-    const double c = double(n) / double(d);
-    int64_t q = int64_t(c);      // truncated toward zero ...
-    q += double(q) < c;          // ... and now ceil(c)
-    int64_t r = n - q * d;       // exact; the answer needs r in (-d, 0]
-    const int64_t up = r > 0;    // q * d < n: one more
+    int64_t q = int64_t(quotient);  // truncated toward zero ...
+    q += double(q) < quotient;      // ... and now ceil(quotient)
+    int64_t r = n - q * d;          // exact; the answer needs r in (-d, 0]
+    const int64_t up = r > 0;       // q * d < n: one more
     q += up;
     r -= up * d;
     const int64_t down = r <= -d;  // (q - 1) * d >= n: one less
@@ -116,19 +116,18 @@ struct EdgeWalker {
     {
         const int64_t dy = b.y - a.y, dx = b.x - a.x;
         den = dy * kSubpixelOne;
+        const int64_t inc = dx * kSubpixelOne;
         if (narrow) {
+            // One division for both quotients: the product's extra rounding is far below 1/4.
+            const double invDen = 1.0 / double(den);
             const int64_t n = a.x * dy + (row * kSubpixelOne - a.y) * dx;
-            x = ceilDivNarrow(n, den, rem);
+            x = ceilDivNarrow(n, den, double(n) * invDen, rem);
+            step = ceilDivNarrow(inc, den, double(inc) * invDen, stepRem);
         } else {
             const Int128 n = Int128(a.x) * dy + Int128(row * kSubpixelOne - a.y) * dx;
             const Int128 q = ceilDiv<Int128>(n, den);
             x = int64_t(q);
             rem = int64_t(q * den - n);
-        }
-        const int64_t inc = dx * kSubpixelOne;
-        if (narrow) {
-            step = ceilDivNarrow(inc, den, stepRem);
-        } else {
             step = ceilDiv<int64_t>(inc, den);
             stepRem = step * den - inc;
         }

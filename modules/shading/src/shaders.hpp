@@ -26,26 +26,34 @@ inline T toChannel(float v)
 }
 
 /** Writes pixels [xBegin, xEnd) of a float RGB row: pixel x gets the first three lanes of
-value(x) = base + step * (x - spanBegin), computed lane-wise exactly as the scalar code does.
-With SIMD, each pixel is one 16-byte store whose fourth lane spills into the next pixel and is
-overwritten by that pixel's store; the run's last pixel is stored channel by channel, so nothing
-outside the run is touched. */
+base + step * (x - spanBegin), lane by lane. Each pixel is one 16-byte store whose fourth lane
+spills into the next pixel and is overwritten by that pixel's store; the run's last pixel is
+stored as 8 + 4 bytes, so nothing outside the run is touched. */
+#if CV_SIMD128
+inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd,
+                             const v_float32x4& base, const v_float32x4& step)
+{
+    const v_float32x4 one = v_setall_f32(1.f);
+    v_float32x4 i = v_setall_f32(float(xBegin - spanBegin));  // exact: small integers
+    float* p = row + 3 * xBegin;
+    for (float* const last = row + 3 * (xEnd - 1); p < last; p += 3, i = i + one)
+        v_store(p, base + step * i);
+    const v_float32x4 value = base + step * i;
+    v_store_low(p, value);
+    p[2] = v_extract_n<2>(value);
+}
+#else
 inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, const float base[3],
                              const float step[3])
 {
-    int x = xBegin;
-#if CV_SIMD128
-    const v_float32x4 b(base[0], base[1], base[2], base[0]), s(step[0], step[1], step[2], step[0]);
-    for (; x < xEnd - 1; x++)
-        v_store(row + 3 * x, b + s * v_setall_f32(float(x - spanBegin)));
-#endif
-    for (; x < xEnd; x++) {
+    for (int x = xBegin; x < xEnd; x++) {
         const float i = float(x - spanBegin);
         row[3 * x] = base[0] + step[0] * i;
         row[3 * x + 1] = base[1] + step[1] * i;
         row[3 * x + 2] = base[2] + step[2] * i;
     }
 }
+#endif
 
 /** Sets pixels [xBegin, xEnd) of an RGB row to `color`, touching nothing outside them. Float
 rows are written with 16-byte stores: four pixels per three stores in long runs, one per pixel
@@ -108,7 +116,7 @@ template <typename T>
 struct GouraudShader {
     double color[3][3];  //!< color[vertex][channel], vertices in the setup's canonical order
     double invArea2;     //!< 1 / twice the signed area, in subpixel units
-    float stepX[3];      //!< d(colour)/dx per pixel
+    float stepX[4];      //!< d(colour)/dx per pixel; a copy of the first in the fourth lane
     //! Narrow triangles: edge function i (opposite vertex i) at pixel (x, y) is
     //! edgeAt0[i] + edgeDx[i] * x + edgeDy[i] * y, exactly, in 64 bits.
     int64_t edgeAt0[3], edgeDx[3], edgeDy[3];
@@ -140,6 +148,7 @@ struct GouraudShader {
         for (int k = 0; k < 3; k++)
             stepX[k] = float(std::clamp(dw[0] * color[0][k] + dw[1] * color[1][k] +
                                         dw[2] * color[2][k], -maxStep, maxStep));
+        stepX[3] = stepX[0];
     }
 
     //! Edge function of a -> b at q, (b - a) x (q - a), exact until its one rounding to double.
@@ -166,11 +175,28 @@ struct GouraudShader {
             w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
             w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
         }
+#if CV_SIMD128 && CV_SIMD128_64F
+        if constexpr (std::is_same<T, float>::value) {
+            // The scalar sums below, two channels per lane pair, in the same order.
+            const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
+            const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) +
+                                   c * v_load(color[2]);
+            const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
+                                   c * v_setall_f64(color[2][2]);
+            storeFloatPixels(row, spanBegin, xBegin, xEnd, v_cvt_f32(lo, hi), v_load(stepX));
+            return;
+        }
+#endif
         float base[3];
         for (int k = 0; k < 3; k++)
             base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
         if constexpr (std::is_same<T, float>::value) {
+#if CV_SIMD128
+            const v_float32x4 baseV(base[0], base[1], base[2], base[0]);
+            storeFloatPixels(row, spanBegin, xBegin, xEnd, baseV, v_load(stepX));
+#else
             storeFloatPixels(row, spanBegin, xBegin, xEnd, base, stepX);
+#endif
             return;
         }
         for (int x = xBegin; x < xEnd; x++) {
