@@ -385,20 +385,32 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     refineEqualKeys(order, orderSize, keys.data());
             }
 
-            // Sets up order[k] into `out`; false when it covers nothing.
-            auto prepare = [&](size_t k, BatchFace& out) {
-                const Vec3i& f = mesh.faces[entryFace(order[k])];
-                const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                TriangleSetup triangle;
-                int vertexOrder[3];
-                if (!setupTriangle(p, size, triangle, vertexOrder))
-                    return false;
-                const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
-                new (&out) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
-                return true;
+            // Sets up faces[0 .. count) into `batch`, returning how many cover something. Faces
+            // are set up a batch at a time and then drawn, each step a loop over the batch, so
+            // that the reads of faces, vertices and colours overlap instead of stalling in turn.
+            auto prepareBatch = [&](const int* faces, int count) {
+                Vec3i corners[kBatch];
+                for (int i = 0; i < count; i++)
+                    corners[i] = mesh.faces[faces[i]];
+                FixedPoint points[kBatch][3];
+                for (int i = 0; i < count; i++)
+                    for (int j = 0; j < 3; j++) {
+                        points[i][j] = snapped[corners[i][j]];
+                        __builtin_prefetch(&mesh.colors[corners[i][j]]);
+                    }
+                int prepared = 0;
+                for (int i = 0; i < count; i++) {
+                    TriangleSetup triangle;
+                    int vertexOrder[3];
+                    if (!setupTriangle(points[i], size, triangle, vertexOrder))
+                        continue;
+                    const Vec3i& f = corners[i];
+                    const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
+                    new (&batch[prepared++]) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
+                }
+                return prepared;
             };
-            // Faces are set up a batch at a time, then drawn: the setups are independent of
-            // each other, so their memory reads overlap instead of stalling face after face.
+            int batchFaces[kBatch];
 
             const double overdraw = bandArea[band] - double(y1 - y0) * width;
             if (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize)) {
@@ -408,9 +420,10 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     for (int y = y0; y < y1; y++)
                         fillPixels(canvas.ptr<T>(y), 0, width, background->val);
                 for (size_t next = orderSize; next > 0;) {
-                    int batchSize = 0;
-                    for (; next > 0 && batchSize < kBatch; next--)
-                        batchSize += prepare(next - 1, batch[batchSize]);
+                    int count = 0;
+                    for (; next > 0 && count < kBatch; next--)
+                        batchFaces[count++] = entryFace(order[next - 1]);
+                    const int batchSize = prepareBatch(batchFaces, count);
                     for (int i = 0; i < batchSize; i++) {
                         const BatchFace& bf = batch[i];
                         walkTriangle(bf.triangle, y0, y1, width, [&](int y, int xBegin, int xEnd) {
@@ -433,12 +446,13 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                 return (uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows) == 0;
             };
             for (size_t next = 0; next < orderSize && fullRows != allRows;) {
-                int batchSize = 0;
-                for (; next < orderSize && batchSize < kBatch; next++) {
+                int count = 0;
+                for (; next < orderSize && count < kBatch; next++) {
                     const int face = entryFace(order[next]);
                     if (!hidden(rows[face].begin, rows[face].end))  // else skipped unread
-                        batchSize += prepare(next, batch[batchSize]);
+                        batchFaces[count++] = face;
                 }
+                const int batchSize = prepareBatch(batchFaces, count);
                 for (int i = 0; i < batchSize; i++) {
                     const BatchFace& bf = batch[i];
                     if (hidden(bf.triangle.rowBegin, bf.triangle.rowEnd))
