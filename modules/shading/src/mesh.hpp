@@ -177,13 +177,13 @@ private:
     std::vector<uint64_t> bits_;
 };
 
-/** Rows per band: about 96 KB of canvas, so a band's rows stay in cache while it is drawn, but
-at least 16 (tall faces are set up once per band they cross) and at most 32 (the band pass keeps
-one bit per row). */
-inline int bandRowsFor(const Mat& canvas)
+/** log2 of the rows per band: 32 rows while that is at most 96 KB of canvas, else 16, so a
+band's rows stay in cache while it is drawn (tall faces are set up once per band they cross, and
+the band pass keeps one bit per row). A power of two: rows map to bands by a shift. */
+inline int bandRowsLog2For(const Mat& canvas)
 {
-    const size_t rowBytes = std::max<size_t>(size_t(canvas.cols) * canvas.elemSize(), 1);
-    return int(std::clamp<size_t>((96 << 10) / rowBytes, 16, 32));
+    const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
+    return rowBytes * 32 <= (96 << 10) ? 5 : 4;
 }
 
 /** A mesh as the band pass reads it: normalised and validated at the API edge. */
@@ -233,7 +233,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     const Size size = canvas.size();
     const int faceCount = int(mesh.faces.size());
     const bool byDepth = !mesh.depth.empty();
-    const int bandRows = bandRowsFor(canvas);
+    const int bandShift = bandRowsLog2For(canvas);
+    const int bandRows = 1 << bandShift;
     const int bandCount = (size.height + bandRows - 1) / bandRows;
 
     // Pass 0, parallel over vertices: snap each once (a vertex is shared by ~6 faces).
@@ -301,7 +302,7 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     // band's list in decreasing face order.
     auto forEachBand = [&](const FaceRows& r, auto&& fn) {
         if (r.begin < r.end)
-            for (int k = r.begin / bandRows; k <= (r.end - 1) / bandRows; k++)
+            for (int k = r.begin >> bandShift; k <= (r.end - 1) >> bandShift; k++)
                 fn(k);
     };
     const int binChunks = std::min(chunkCount, 16);  // bounds the count table
@@ -316,6 +317,11 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             const int end = std::min(faceCount, (c + 1) * facesPerBinChunk);
             for (int i = c * facesPerBinChunk; i < end; i++) {
                 const FaceRows& r = rows[i];
+                if (r.begin < r.end && (r.begin >> bandShift) == ((r.end - 1) >> bandShift)) {
+                    count[r.begin >> bandShift]++;  // the common case: within one band
+                    area[r.begin >> bandShift] += r.area;
+                    continue;
+                }
                 const double areaPerRow = r.area / std::max(r.end - r.begin, 1);
                 forEachBand(r, [&](int k) {
                     count[k]++;
