@@ -42,40 +42,40 @@ static int countRows(const Mat& m, const char* argName, int dims, int expectedCo
     return count;
 }
 
-/** Reads `arr` as items of type T (Point2d, Vec3d, Vec3i, double), converting straight into the
-result's memory. */
+/** Reads `arr` as items of type T (Point2d, Vec3d, Vec3i, double) into `items`, converting
+straight into its memory. */
 template <typename T>
-static std::vector<T> readItems(InputArray arr, const char* argName, int expectedCount)
+static void readItems(InputArray arr, const char* argName, int expectedCount,
+                      std::vector<T>& items)
 {
     using Info = DataType<T>;
     static_assert(sizeof(T) == sizeof(typename Info::channel_type) * Info::channels,
                   "T must be packed channel values");
     const Mat m = arr.getMat();
-    std::vector<T> items(size_t(countRows(m, argName, Info::channels, expectedCount)));
+    items.resize(size_t(countRows(m, argName, Info::channels, expectedCount)));
     if (!items.empty()) {
         Mat dst(m.rows, m.cols, CV_MAKETYPE(traits::Depth<T>::value, m.channels()), items.data());
         m.convertTo(dst, traits::Depth<T>::value);  // dst has the right size and type: no reallocation
     }
-    return items;
 }
 
-std::vector<Point2d> readPoints(InputArray arr, const char* argName, int expectedCount)
+void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out)
 {
-    return readItems<Point2d>(arr, argName, expectedCount);
+    readItems(arr, argName, expectedCount, out);
 }
 
-std::vector<Vec3d> readColors(InputArray arr, const char* argName, int expectedCount)
+void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out)
 {
-    return readItems<Vec3d>(arr, argName, expectedCount);
+    readItems(arr, argName, expectedCount, out);
 }
 
-std::vector<Vec3i> readFaces(InputArray arr, const char* argName, int vertexCount)
+void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces)
 {
-    std::vector<Vec3i> faces;
     if (arr.depth() == CV_32S) {
-        faces = readItems<Vec3i>(arr, argName, -1);
+        readItems(arr, argName, -1, faces);
     } else {
-        const std::vector<Vec3d> values = readItems<Vec3d>(arr, argName, -1);
+        std::vector<Vec3d> values;
+        readItems(arr, argName, -1, values);
         faces.resize(values.size());
         for (size_t i = 0; i < values.size(); i++)
             for (int k = 0; k < 3; k++) {
@@ -96,14 +96,14 @@ std::vector<Vec3i> readFaces(InputArray arr, const char* argName, int vertexCoun
                 CV_Error(Error::StsOutOfRange,
                          format("%s: face %zu has index %d, outside [0, %d) (the vertex count)",
                                 argName, i, faces[i][k], vertexCount));
-    return faces;
 }
 
-std::vector<double> readDepths(InputArray arr, const char* argName, int expectedCount)
+void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out)
 {
     if (arr.empty())
-        return {};
-    return readItems<double>(arr, argName, expectedCount);
+        out.clear();
+    else
+        readItems(arr, argName, expectedCount, out);
 }
 
 void checkCanvas(InputOutputArray canvas, const char* argName)

@@ -13,14 +13,15 @@ namespace cv {
 namespace shading {
 namespace detail {
 
-// Each reader accepts rows of CV_32F/CV_64F/CV_32S values (see the public header for the forms).
-// `expectedCount` < 0 accepts any count. Errors name `argName` and say what was expected and given.
-std::vector<Point2d> readPoints(InputArray arr, const char* argName, int expectedCount);
-std::vector<Vec3d> readColors(InputArray arr, const char* argName, int expectedCount);
+// Each reader accepts rows of CV_32F/CV_64F/CV_32S values (see the public header for the forms)
+// and fills `out` (reusing its capacity). `expectedCount` < 0 accepts any count. Errors name
+// `argName` and say what was expected and given.
+void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out);
+void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out);
 //! Faces as zero-based index triples, each checked against [0, vertexCount).
-std::vector<Vec3i> readFaces(InputArray arr, const char* argName, int vertexCount);
+void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& out);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
-std::vector<double> readDepths(InputArray arr, const char* argName, int expectedCount);
+void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out);
 
 //! Checks that `canvas` is a non-empty CV_32FC3 or CV_8UC3 image.
 void checkCanvas(InputOutputArray canvas, const char* argName);

@@ -192,6 +192,12 @@ struct MeshData {
     std::vector<Vec3i> faces;   //!< indices checked against vertices
     std::vector<Vec3d> colors;  //!< one per vertex
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order
+
+    size_t capacityBytes() const
+    {
+        return vertices.capacity() * sizeof(Point2d) + faces.capacity() * sizeof(Vec3i) +
+               colors.capacity() * sizeof(Vec3d) + depth.capacity() * sizeof(double);
+    }
 };
 
 //! A face's rows on the canvas and its area, from the key pass.

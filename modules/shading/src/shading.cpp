@@ -34,8 +34,10 @@ template <template <typename> class Shader>
 void drawTriangle(InputOutputArray canvasArr, InputArray vertices, InputArray vcolors)
 {
     checkCanvas(canvasArr, "canvas");
-    const std::vector<Point2d> v = readPoints(vertices, "vertices", 3);
-    const std::vector<Vec3d> c = readColors(vcolors, "vcolors", 3);
+    std::vector<Point2d> v;
+    std::vector<Vec3d> c;
+    readPoints(vertices, "vertices", 3, v);
+    readColors(vcolors, "vcolors", 3, c);
     Mat canvas = canvasArr.getMat();
     if (canvas.depth() == CV_8U)
         drawTriangle<Shader, uchar>(canvas, v.data(), c.data());
@@ -57,17 +59,26 @@ void gouraud(InputOutputArray canvas, InputArray vertices, InputArray vcolors)
 
 namespace {
 
-MeshData readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
-                  int shadeType)
+/** Reads and checks the mesh arguments into this thread's MeshData, whose buffers are kept
+between calls as the drawing's are (see MeshWorkspace). */
+MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
+                   int shadeType)
 {
     checkShadeType(shadeType);
-    MeshData mesh;
-    mesh.vertices = readPoints(verts2d, "verts2d", -1);
+    thread_local MeshData mesh;
+    readPoints(verts2d, "verts2d", -1, mesh.vertices);
     const int count = int(mesh.vertices.size());
-    mesh.faces = readFaces(faces, "faces", count);
-    mesh.colors = readColors(vcolors, "vcolors", count);
-    mesh.depth = readDepths(depth, "depth", count);
+    readFaces(faces, "faces", count, mesh.faces);
+    readColors(vcolors, "vcolors", count, mesh.colors);
+    readDepths(depth, "depth", count, mesh.depth);
     return mesh;
+}
+
+//! Frees the mesh buffers after a call that needed more than MeshWorkspace::kKeepBytes.
+void releaseIfBig(MeshData& mesh)
+{
+    if (mesh.capacityBytes() > MeshWorkspace::kKeepBytes)
+        mesh = MeshData();
 }
 
 //! Draws the mesh; with `background`, also sets every pixel no face covers (render()).
@@ -91,12 +102,13 @@ void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces, Inp
               InputArray depth, int shadeType)
 {
     checkCanvas(canvas, "canvas");
-    const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
+    MeshData& mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     Mat img = canvas.getMat();
     if (img.depth() == CV_8U)
         drawMeshAs<uchar>(img, mesh, shadeType, nullptr);
     else
         drawMeshAs<float>(img, mesh, shadeType, nullptr);
+    releaseIfBig(mesh);
 }
 
 void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray depth,
@@ -105,10 +117,11 @@ void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray
     if (size.width <= 0 || size.height <= 0)
         CV_Error(Error::StsBadSize, format("size: expected positive width and height, got %dx%d",
                                            size.width, size.height));
-    const MeshData mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
+    MeshData& mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     img.create(size, CV_32FC3);
     Mat canvas = img.getMat();
     drawMeshAs<float>(canvas, mesh, shadeType, &background);  // also fills the background
+    releaseIfBig(mesh);
 }
 
 }  // namespace shading
