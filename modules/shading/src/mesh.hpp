@@ -100,7 +100,9 @@ inline void refineEqualKeys(uint64_t* items, size_t n, const uint64_t* exactKeys
         while (end < n && (items[end] >> 32) == (items[begin] >> 32))
             end++;
         if (end - begin > 16) {
-            std::sort(items + begin, items + end, frontFirst);
+            // Often already in order: equal depths come out of the radix sort later face first.
+            if (!std::is_sorted(items + begin, items + end, frontFirst))
+                std::sort(items + begin, items + end, frontFirst);
         } else {
             for (size_t i = begin + 1; i < end; i++) {  // insertion sort
                 const uint64_t item = items[i];
