@@ -89,17 +89,32 @@ inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 /** Flat shading: the mean of the vertex colours, taken in the order the vertices were given. */
 template <typename T>
 struct FlatShader {
-    T color[3];
+    T color[4];  //!< the colour; for float rows a copy of its first channel in the fourth lane
 
     FlatShader(const TriangleSetup&, const int*, const Vec3d c[3])
     {
         for (int k = 0; k < 3; k++)
             color[k] = toChannel<T>(float((c[0][k] + c[1][k] + c[2][k]) / 3.0));
+        color[3] = color[0];
     }
 
     void operator()(const TriangleSetup&, T* row, int /*y*/, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
+#if CV_SIMD128
+        if constexpr (std::is_same<T, float>::value) {
+            if (xEnd - xBegin < 16) {
+                // Spans of small faces are a few pixels: one store per pixel, no set-up.
+                const v_float32x4 c = v_load(color);
+                float* p = row + 3 * xBegin;
+                for (float* const last = row + 3 * (xEnd - 1); p < last; p += 3)
+                    v_store(p, c);
+                v_store_low(p, c);
+                p[2] = color[2];
+                return;
+            }
+        }
+#endif
         fillPixels(row, xBegin, xEnd, color);
     }
 };
