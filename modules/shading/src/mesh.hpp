@@ -250,28 +250,42 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     MeshWorkspace& work = MeshWorkspace::ofThisThread();
     std::vector<FixedPoint>& snapped = work.snapped;
     snapped.resize(vertexCount);
-    constexpr int kChunk = 4096;
-    parallel_for_(Range(0, (vertexCount + kChunk - 1) / kChunk), [&](const Range& chunks) {
-        const int end = std::min(vertexCount, chunks.end * kChunk);
-        for (int i = chunks.start * kChunk; i < end; i++)
+    constexpr int kVertexChunk = 2048;
+    parallel_for_(Range(0, (vertexCount + kVertexChunk - 1) / kVertexChunk), [&](const Range& r) {
+        const int end = std::min(vertexCount, r.end * kVertexChunk);
+        for (int i = r.start * kVertexChunk; i < end; i++)
             snapped[i] = snapToGrid(mesh.vertices[i]);
     });
 
-    // Pass 1, parallel over faces: the sort key and the rows each face may touch, and the range
-    // of the keys per chunk (for quantizing them below).
+    // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
+    // its area; per chunk, the range of the keys (for quantizing them below) and the faces and
+    // area each band receives (for binning).
     std::vector<uint64_t>& keys = work.keys;  // culled faces keep stale keys, never used
     keys.resize(byDepth ? faceCount : 0);
     std::vector<FaceRows>& rows = work.rows;
     rows.resize(faceCount);
-    const int chunkCount = (faceCount + kChunk - 1) / kChunk;
+    // Enough chunks to balance the threads, few enough to bound the per-chunk band tables.
+    const int chunkCount = std::min((faceCount + 1023) / 1024, std::max(32, 4 * getNumThreads()));
+    const int chunkFaces = chunkCount ? (faceCount + chunkCount - 1) / chunkCount : 0;
     std::vector<std::pair<uint64_t, uint64_t>> chunkKeyRange(chunkCount, {UINT64_MAX, 0});
+    // size_t: a face on a tall canvas can cross thousands of bands.
+    std::vector<size_t> binCursor(size_t(chunkCount) * bandCount, 0);
+    std::vector<double> binArea(size_t(chunkCount) * bandCount, 0.0);
+    auto forEachBand = [&](const FaceRows& r, auto&& fn) {
+        if (r.begin < r.end)
+            for (int k = r.begin >> bandShift; k <= (r.end - 1) >> bandShift; k++)
+                fn(k);
+    };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int chunk = chunks.start; chunk < chunks.end; chunk++) {
             uint64_t lo = UINT64_MAX, hi = 0;
-            const int end = std::min(faceCount, (chunk + 1) * kChunk);
-            for (int i = chunk * kChunk; i < end; i++) {
+            size_t* count = &binCursor[size_t(chunk) * bandCount];
+            double* area = &binArea[size_t(chunk) * bandCount];
+            const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
+            for (int i = chunk * chunkFaces; i < end; i++) {
                 const Vec3i& f = mesh.faces[i];
-                rows[i] = {0, 0, 0.f};
+                FaceRows& r = rows[i];
+                r = {0, 0, 0.f};
                 if (byDepth) {
                     const double mean =
                         (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
@@ -282,10 +296,23 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     hi = std::max(hi, keys[i]);
                 }
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                if (triangleRows(p, size, rows[i].begin, rows[i].end))
-                    rows[i].area = float(std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
-                                                  double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
-                                         (0.5 / double(kSubpixelOne * kSubpixelOne)));
+                if (!triangleRows(p, size, r.begin, r.end))
+                    continue;
+                r.area = float(std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
+                                        double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
+                               (0.5 / double(kSubpixelOne * kSubpixelOne)));
+                if ((r.begin >> bandShift) == ((r.end - 1) >> bandShift)) {
+                    count[r.begin >> bandShift]++;  // the common case: within one band
+                    area[r.begin >> bandShift] += r.area;
+                    continue;
+                }
+                const double areaPerRow = r.area / (r.end - r.begin);
+                forEachBand(r, [&](int k) {
+                    count[k]++;
+                    const int inBand = std::min(r.end, (k + 1) * bandRows) -
+                                       std::max(r.begin, k * bandRows);
+                    area[k] += areaPerRow * inBand;
+                });
             }
             chunkKeyRange[chunk] = {lo, hi};
         }
@@ -306,45 +333,13 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
         return byDepth ? uint32_t((keys[face] - minKey) >> keyShift) : uint32_t(0);
     };
 
-    // Pass 2, parallel over chunks of faces: the entries binned by band (a counting sort), each
+    // Pass 2, parallel over the same chunks: the entries binned by band (a counting sort), each
     // band's list in decreasing face order.
-    auto forEachBand = [&](const FaceRows& r, auto&& fn) {
-        if (r.begin < r.end)
-            for (int k = r.begin >> bandShift; k <= (r.end - 1) >> bandShift; k++)
-                fn(k);
-    };
-    const int binChunks = std::min(chunkCount, 16);  // bounds the count table
-    const int facesPerBinChunk = binChunks ? (faceCount + binChunks - 1) / binChunks : 0;
-    // size_t: a face on a tall canvas can cross thousands of bands.
-    std::vector<size_t> binCursor(size_t(binChunks) * bandCount, 0);
-    std::vector<double> binArea(size_t(binChunks) * bandCount, 0.0);
-    parallel_for_(Range(0, binChunks), [&](const Range& chunks) {
-        for (int c = chunks.start; c < chunks.end; c++) {
-            size_t* count = &binCursor[size_t(c) * bandCount];
-            double* area = &binArea[size_t(c) * bandCount];
-            const int end = std::min(faceCount, (c + 1) * facesPerBinChunk);
-            for (int i = c * facesPerBinChunk; i < end; i++) {
-                const FaceRows& r = rows[i];
-                if (r.begin < r.end && (r.begin >> bandShift) == ((r.end - 1) >> bandShift)) {
-                    count[r.begin >> bandShift]++;  // the common case: within one band
-                    area[r.begin >> bandShift] += r.area;
-                    continue;
-                }
-                const double areaPerRow = r.area / std::max(r.end - r.begin, 1);
-                forEachBand(r, [&](int k) {
-                    count[k]++;
-                    const int inBand = std::min(r.end, (k + 1) * bandRows) -
-                                       std::max(r.begin, k * bandRows);
-                    area[k] += areaPerRow * inBand;
-                });
-            }
-        }
-    });
     std::vector<size_t> bandStart(bandCount + 1, 0);
     std::vector<double> bandArea(bandCount, 0.0);  // covered samples, counted with overdraw
     for (int k = 0; k < bandCount; k++) {
         size_t next = bandStart[k];
-        for (int c = binChunks; c-- > 0;) {  // later chunks first: decreasing face order
+        for (int c = chunkCount; c-- > 0;) {  // later chunks first: decreasing face order
             const size_t count = binCursor[size_t(c) * bandCount + k];
             binCursor[size_t(c) * bandCount + k] = next;
             next += count;
@@ -354,11 +349,11 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     }
     std::vector<uint64_t>& binned = work.binned;
     binned.resize(bandStart[bandCount]);
-    parallel_for_(Range(0, binChunks), [&](const Range& chunks) {
+    parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
             size_t* cursor = &binCursor[size_t(c) * bandCount];
-            const int begin = c * facesPerBinChunk;
-            for (int i = std::min(faceCount, begin + facesPerBinChunk); i-- > begin;) {
+            const int begin = c * chunkFaces;
+            for (int i = std::min(faceCount, begin + chunkFaces); i-- > begin;) {
                 const uint64_t entry = bandEntry(quantizedKey(i), i);
                 forEachBand(rows[i], [&](int k) { binned[cursor[k]++] = entry; });
             }
