@@ -3,6 +3,7 @@
 
 #include <opencv2/shading.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -90,12 +91,23 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
                 faces[i][k] = int(index);
             }
     }
-    for (size_t i = 0; i < faces.size(); i++)
-        for (int k = 0; k < 3; k++)
-            if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
-                CV_Error(Error::StsOutOfRange,
-                         format("%s: face %zu has index %d, outside [0, %d) (the vertex count)",
-                                argName, i, faces[i][k], vertexCount));
+    // One vectorizable pass for the range; the error path finds the first bad index.
+    const int* indices = faces.empty() ? nullptr : &faces[0][0];
+    int lowest = 0, highest = 0;
+    if (indices) {
+        lowest = highest = indices[0];
+        for (size_t i = 1; i < 3 * faces.size(); i++) {
+            lowest = std::min(lowest, indices[i]);
+            highest = std::max(highest, indices[i]);
+        }
+    }
+    if (lowest < 0 || highest >= vertexCount)
+        for (size_t i = 0; i < faces.size(); i++)
+            for (int k = 0; k < 3; k++)
+                if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
+                    CV_Error(Error::StsOutOfRange,
+                             format("%s: face %zu has index %d, outside [0, %d) (the vertex "
+                                    "count)", argName, i, faces[i][k], vertexCount));
 }
 
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out)
