@@ -414,7 +414,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     if (!setupTriangle(points[i], size, triangle, vertexOrder))
                         continue;
                     const Vec3i& f = corners[i];
-                    const Vec3d c[3] = {mesh.colors[f[0]], mesh.colors[f[1]], mesh.colors[f[2]]};
+                    const Vec3d* const c[3] = {&mesh.colors[f[0]], &mesh.colors[f[1]],
+                                               &mesh.colors[f[2]]};
                     new (&batch[prepared++]) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
                 }
                 return prepared;

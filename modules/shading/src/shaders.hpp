@@ -91,10 +91,10 @@ template <typename T>
 struct FlatShader {
     T color[4];  //!< the colour; for float rows a copy of its first channel in the fourth lane
 
-    FlatShader(const TriangleSetup&, const int*, const Vec3d c[3])
+    FlatShader(const TriangleSetup&, const int*, const Vec3d* const c[3])
     {
         for (int k = 0; k < 3; k++)
-            color[k] = toChannel<T>(float((c[0][k] + c[1][k] + c[2][k]) / 3.0));
+            color[k] = toChannel<T>(float(((*c[0])[k] + (*c[1])[k] + (*c[2])[k]) / 3.0));
         color[3] = color[0];
     }
 
@@ -136,7 +136,7 @@ struct GouraudShader {
     //! edgeAt0[i] + edgeDx[i] * x + edgeDy[i] * y, exactly, in 64 bits.
     int64_t edgeAt0[3], edgeDx[3], edgeDy[3];
 
-    GouraudShader(const TriangleSetup& t, const int* order, const Vec3d c[3])
+    GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3])
     {
         const FixedPoint p[3] = {t.top, t.mid, t.bottom};
         if (t.narrow) {
@@ -151,7 +151,7 @@ struct GouraudShader {
         }
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < 3; k++)
-                color[i][k] = c[order[i]][k];
+                color[i][k] = (*c[order[i]])[k];
         invArea2 = 1.0 / edgeValue(p[0], p[1], p[2], t.narrow);
         // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
         const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,

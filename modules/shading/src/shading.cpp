@@ -24,7 +24,8 @@ void drawTriangle(Mat& canvas, const Point2d v[3], const Vec3d c[3])
     int order[3];
     if (!setupTriangle(p, canvas.size(), setup, order))
         return;
-    const Shader<T> shader(setup, order, c);
+    const Vec3d* const colors[3] = {&c[0], &c[1], &c[2]};
+    const Shader<T> shader(setup, order, colors);
     walkTriangle(setup, 0, canvas.rows, canvas.cols, [&](int y, int xBegin, int xEnd) {
         shader(setup, canvas.ptr<T>(y), y, xBegin, xBegin, xEnd);
     });
