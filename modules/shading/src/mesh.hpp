@@ -50,28 +50,39 @@ inline int entryFace(uint64_t entry)
     return int(uint32_t(entry));
 }
 
-/** Stable LSD radix sort of band entries by their high word, 8 bits a pass; bytes every entry
-shares are skipped (nearby depths share the high bytes). */
-inline void sortByHighWord(uint64_t* items, size_t n, std::vector<uint64_t>& scratch)
+/** Sorts a band's entries by their high word, stably, approximately: the keys are narrowed to
+16 bits (relative to the band's smallest, dropping low bits when the band's keys span more), which
+two 8-bit LSD radix passes sort. Returns whether bits were dropped, i.e. whether entries with equal
+16-bit keys may still be out of order (refineEqualKeys completes the order). The entries' high
+words are replaced by the 16-bit keys. */
+inline bool sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch)
 {
     if (n < 2)
-        return;
-    uint32_t count[4][256] = {};
+        return false;
+    uint32_t lo = UINT32_MAX, hi = 0;
     for (size_t i = 0; i < n; i++) {
         const uint32_t key = uint32_t(items[i] >> 32);
+        lo = std::min(lo, key);
+        hi = std::max(hi, key);
+    }
+    int drop = 0;
+    while (((hi - lo) >> drop) > 0xffff)
+        drop++;
+    uint32_t count[2][256] = {};
+    for (size_t i = 0; i < n; i++) {
+        const uint32_t key = (uint32_t(items[i] >> 32) - lo) >> drop;
+        items[i] = uint64_t(key) << 32 | uint32_t(items[i]);
         count[0][key & 0xff]++;
-        count[1][(key >> 8) & 0xff]++;
-        count[2][(key >> 16) & 0xff]++;
-        count[3][key >> 24]++;
+        count[1][key >> 8]++;
     }
     scratch.resize(std::max(scratch.size(), n));
     uint64_t* src = items;
     uint64_t* dst = scratch.data();
-    for (int pass = 0; pass < 4; pass++) {
+    for (int pass = 0; pass < 2; pass++) {
         const int shift = 32 + 8 * pass;
         uint32_t* c = count[pass];
         if (c[(items[0] >> shift) & 0xff] == n)
-            continue;
+            continue;  // every entry has this byte
         uint32_t sum = 0;
         for (int b = 0; b < 256; b++) {
             const uint32_t k = c[b];
@@ -84,6 +95,7 @@ inline void sortByHighWord(uint64_t* items, size_t n, std::vector<uint64_t>& scr
     }
     if (src != items)
         std::copy(src, src + n, items);
+    return drop > 0;
 }
 
 /** Completes the order of entries sorted by quantized key: within each run of equal quantized
@@ -389,8 +401,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             uint64_t* order = binned.data() + bandStart[band];
             const size_t orderSize = bandStart[band + 1] - bandStart[band];
             if (byDepth) {
-                sortByHighWord(order, orderSize, scratch);
-                if (keyShift > 0)
+                const bool coarse = sortBandEntries(order, orderSize, scratch);
+                if (coarse || keyShift > 0)
                     refineEqualKeys(order, orderSize, keys.data());
             }
 
