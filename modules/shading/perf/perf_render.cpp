@@ -6,6 +6,7 @@
 //   plain           the plain single-threaded edge-function rasterizer (perf_baselines.hpp)
 //   fillConvexPoly  cv::fillConvexPoly per triangle, flat only
 //   clear           canvas.setTo(white) alone: the floor
+//   llvmpipe        Mesa's llvmpipe through OSMesa, when built with it (perf_llvmpipe.hpp)
 //
 // on the scenes of perf_scenes.hpp (grid, sphere, random at 512 and 2048, demo at 512); every
 // method clears the canvas and draws all faces in painter's order. Names and counters are
@@ -17,6 +18,9 @@
 
 #include "perf_baselines.hpp"
 #include "perf_harness.hpp"
+#ifdef OPENCV_SHADING_PERF_LLVMPIPE
+#include "perf_llvmpipe.hpp"
+#endif
 
 #include <opencv2/core.hpp>
 #include <opencv2/shading.hpp>
@@ -74,6 +78,10 @@ int main(int argc, char** argv)
                 }));
         addScene(sc, allThreads);
     }
+
+#ifdef OPENCV_SHADING_PERF_LLVMPIPE
+    addLlvmpipeBenchmarks(scenes);
+#endif
 
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

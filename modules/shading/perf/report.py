@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # This file is part of opencv_shading. License: Apache-2.0.
-"""Turns Google Benchmark JSON from opencv_shading_perf (and opencv_shading_perf_osmesa) into a
+"""Turns Google Benchmark JSON from opencv_shading_perf into a
 Markdown report on stdout: the machine, a table of median times per scene and a table of ratios.
 With --plots DIR and matplotlib (Debian: python3-matplotlib, for /usr/bin/python3) it also writes
 DIR/perf_vs_triangles.png and DIR/perf_vs_canvas.png.

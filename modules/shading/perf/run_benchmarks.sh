@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the benchmarks (Release, -DOPENCV_SHADING_BUILD_PERF=ON) in build-perf/, runs them
-# (medians of 5 repetitions, JSON into build-perf/results/), then prints the Markdown report and
-# writes the plots to docs/perf/ (report.py). opencv_shading_perf_osmesa (llvmpipe) runs too when
-# OSMesa was found. Takes a few minutes on 2 cores.
+# (medians of 5 repetitions, interleaved at random, JSON into build-perf/results/), then prints the Markdown report and
+# writes the plots to docs/perf/ (report.py). llvmpipe runs in the same program when OSMesa was
+# found (libosmesa6-dev). Takes about ten minutes on 2 cores.
 #
 # usage: modules/shading/perf/run_benchmarks.sh [Google Benchmark flags, e.g.
 #        --benchmark_filter=512 --benchmark_repetitions=3]
@@ -19,12 +19,10 @@ cmake --build "$build" -j"${JOBS:-$(nproc)}"
 
 mkdir -p "$results"
 rm -f "$results"/*.json
-for program in opencv_shading_perf opencv_shading_perf_osmesa; do
-  exe="$build/modules/shading/perf/$program"
-  [[ -x $exe ]] || continue
-  "$exe" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-    --benchmark_out_format=json --benchmark_out="$results/$program.json" "$@"
-done
+# Repetitions interleaved at random: slow drifts of a shared machine hit every method alike.
+"$build/modules/shading/perf/opencv_shading_perf" --benchmark_repetitions=5 \
+  --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
+  --benchmark_out_format=json --benchmark_out="$results/opencv_shading_perf.json" "$@"
 
 # Plots need matplotlib: Debian's python3-matplotlib is for /usr/bin/python3.
 python=python3

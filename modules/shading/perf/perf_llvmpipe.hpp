@@ -1,8 +1,8 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
-// opencv_shading_perf_osmesa: Mesa's llvmpipe (OpenGL on the CPU, multi-threaded and SIMD)
-// through OSMesa, on the scenes of opencv_shading_perf, for comparison with its results. Built
-// only when OSMesa is found (Debian: libosmesa6-dev).
+// perf_llvmpipe.hpp: Mesa's llvmpipe (OpenGL on the CPU, multi-threaded and SIMD) through OSMesa,
+// on the benchmark scenes. opencv_shading_perf includes it when OSMesa is found (Debian:
+// libosmesa6-dev), so llvmpipe runs in the same process and run as render, interleaved with it.
 //
 //   llvmpipe/SCENE/SHADE/threads:N  clear to white, then all triangles in painter's order (sorted
 //                                   on the CPU every frame, as render does), glFinish
@@ -13,8 +13,10 @@
 // the point (x, y) and image rows map to GL's window rows (y up), where GL's fill rule is the
 // library's: coverage matches but for a few pixels (GL rounds the vertices through a float
 // transform) and Gouraud colours differ a little on thin triangles (GL interpolates in float).
-// llvmpipe fixes its thread count when it starts: it uses LP_NUM_THREADS, which this program
-// sets to the number of CPUs unless it is set already.
+// llvmpipe fixes its thread count when its first context starts: it uses LP_NUM_THREADS, which
+// addLlvmpipeBenchmarks sets to the number of CPUs unless it is set already.
+#ifndef OPENCV_SHADING_PERF_LLVMPIPE_HPP
+#define OPENCV_SHADING_PERF_LLVMPIPE_HPP
 
 #include "perf_baselines.hpp"
 #include "perf_harness.hpp"
@@ -31,9 +33,7 @@
 #include <string>
 #include <vector>
 
-namespace {
-
-using namespace shading_perf;
+namespace shading_perf {
 
 //! One OSMesa context drawing scenes into float RGBA canvases.
 class Llvmpipe {
@@ -117,21 +117,14 @@ private:
     std::vector<cv::Vec3f> colors_;
 };
 
-}  // namespace
-
-int main(int argc, char** argv)
+/** Registers llvmpipe on every scene, flat and Gouraud, with LP_NUM_THREADS threads (set to
+the number of CPUs unless set already), and adds its pixel check against render to the context. */
+inline void addLlvmpipeBenchmarks(const std::vector<Scene>& scenes)
 {
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv))
-        return 1;
-
     const std::string cpus = std::to_string(cv::getNumberOfCPUs());
     setenv("LP_NUM_THREADS", cpus.c_str(), 0);  // before the first context; kept if set
     const int threads = std::atoi(std::getenv("LP_NUM_THREADS"));
-
-    const std::vector<Scene> scenes = benchmarkScenes();  // outlive the benchmarks
     auto gl = std::make_shared<Llvmpipe>();
-    addMachineContext();
     benchmark::AddCustomContext("llvmpipe_threads", std::to_string(threads));
     for (const Scene& sc : scenes) {
         if (sc.size.width <= 512)
@@ -146,8 +139,8 @@ int main(int argc, char** argv)
                              gl->render(sc, shade == cv::shading::SHADE_GOURAUD, img);
                          });
     }
-
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
 }
+
+}  // namespace shading_perf
+
+#endif  // OPENCV_SHADING_PERF_LLVMPIPE_HPP
