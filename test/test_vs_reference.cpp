@@ -674,9 +674,10 @@ namespace {
 // Ties: small integers, many equal means. Random: doubles. Tenths: multiples of 0.1, whose
 // mathematically equal means can differ in the last bit depending on the order of the sum
 // (the reference sums d[i] + d[j] + d[k] in face order). Crowded: clusters of means closer than
-// 1e-11 next to a few depths of +-1e300, so that sorting by a coarse key is not enough.
+// 1e-11 next to a few depths of +-1e300 and -infinity, so that sorting by a coarse key is not
+// enough. Infinite: 1, 2 or +infinity (no NaN means: the reference does not skip those).
 // None: no depth.
-enum class Depths { Ties, Random, Tenths, Crowded, None };
+enum class Depths { Ties, Random, Tenths, Crowded, Infinite, None };
 
 struct Mesh {
     std::vector<Point2d> verts;
@@ -703,7 +704,12 @@ Mesh randomMesh(cv::RNG& rng, cv::Size size, int nv, int nf, Depths depths, bool
             m.depth.push_back(rng.uniform(0, 10) / 10.0);
         else if (depths == Depths::Crowded)
             m.depth.push_back(i < 2 ? (i ? 1e300 : -1e300)
+                              : i < 4 ? -std::numeric_limits<double>::infinity()
                                     : rng.uniform(0, 8) + rng.uniform(0, 8) * std::ldexp(1.0, -40));
+        else if (depths == Depths::Infinite) {
+            const double choices[] = { 1, 2, std::numeric_limits<double>::infinity() };
+            m.depth.push_back(choices[rng.uniform(0, 3)]);
+        }
     }
     for (int f = 0; f < nf; f++) {
         cv::Vec3i t(rng.uniform(0, nv), rng.uniform(0, nv), rng.uniform(0, nv));
@@ -836,6 +842,17 @@ TEST(ShadingVsReference, DrawMeshCrowdedDepths)
     for (bool gouraud : { false, true })
         for (int i = 0, n = scaled(4); i < n; i++) {
             const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::Crowded, false);
+            EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
+                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
+        }
+}
+
+TEST(ShadingVsReference, DrawMeshInfiniteDepths)
+{
+    cv::RNG rng(scaledSeed(137));
+    for (bool gouraud : { false, true })
+        for (int i = 0, n = scaled(3); i < n; i++) {
+            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::Infinite, false);
             EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
                 << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
         }

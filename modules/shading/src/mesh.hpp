@@ -18,7 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <limits>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -27,14 +27,17 @@ namespace cv {
 namespace shading {
 namespace detail {
 
-//! A key whose unsigned order is the order of `v` (v not NaN; -0 and +0 share a key).
-inline uint64_t ascendingKey(double v)
+/** Maps a mean depth to 32 bits, linearly over [lo, hi] (the finite means' range), so that the
+map never decreases: equal depths share a key and a nearer depth never gets a larger one. Depths
+closer than the 32-bit step may share a key too; refineEqualKeys orders those exactly. */
+inline uint32_t quantizeDepth(double depth, double lo, double scale)
 {
-    if (v == 0)
-        v = 0.0;
-    uint64_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    return (bits >> 63) ? ~bits : bits | (uint64_t(1) << 63);
+    double v = (depth - lo) * scale;  // each step rounds monotonically
+    if (!(v >= 0))                    // below the range, or 0 * inf
+        v = 0;
+    if (!(v <= double(UINT32_MAX)))   // +inf
+        v = double(UINT32_MAX);
+    return uint32_t(v);
 }
 
 /** A face's entry in a band list: its quantized depth key in the high word, its index in the low
@@ -52,13 +55,12 @@ inline int entryFace(uint64_t entry)
 
 /** Sorts a band's entries by their high word, stably, approximately: the keys are narrowed to
 16 bits (relative to the band's smallest, dropping low bits when the band's keys span more), which
-two 8-bit LSD radix passes sort. Returns whether bits were dropped, i.e. whether entries with equal
-16-bit keys may still be out of order (refineEqualKeys completes the order). The entries' high
-words are replaced by the 16-bit keys. */
-inline bool sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch)
+two 8-bit LSD radix passes sort; entries with equal 16-bit keys may still be out of order
+(refineEqualKeys completes the order). The entries' high words become the 16-bit keys. */
+inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch)
 {
     if (n < 2)
-        return false;
+        return;
     uint32_t lo = UINT32_MAX, hi = 0;
     for (size_t i = 0; i < n; i++) {
         const uint32_t key = uint32_t(items[i] >> 32);
@@ -95,33 +97,32 @@ inline bool sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& sc
     }
     if (src != items)
         std::copy(src, src + n, items);
-    return drop > 0;
 }
 
 /** Completes the order of entries sorted by quantized key: within each run of equal quantized
-keys, orders by the exact key (ascending), then by face (descending). Runs are short unless
-many depths crowd into one quantization step; long ones are sorted in O(n log n). */
-inline void refineEqualKeys(uint64_t* items, size_t n, const uint64_t* exactKeys)
+keys, orders by the exact mean depth (ascending), then by face (descending). A run's exact keys are
+gathered first (independent loads, which overlap), then checked: runs of equal depths are
+usually in order already, as the radix sort leaves equal keys later face first. */
+inline void refineEqualKeys(uint64_t* items, size_t n, const double* exactKeys,
+                            std::vector<std::pair<double, uint64_t>>& run)
 {
-    auto frontFirst = [exactKeys](uint64_t a, uint64_t b) {
-        const uint64_t ka = exactKeys[entryFace(a)], kb = exactKeys[entryFace(b)];
-        return ka < kb || (ka == kb && entryFace(a) > entryFace(b));
+    auto frontFirst = [](const std::pair<double, uint64_t>& a,
+                         const std::pair<double, uint64_t>& b) {
+        return a.first < b.first ||
+               (a.first == b.first && entryFace(a.second) > entryFace(b.second));
     };
     for (size_t begin = 0; begin + 1 < n;) {
         size_t end = begin + 1;
         while (end < n && (items[end] >> 32) == (items[begin] >> 32))
             end++;
-        if (end - begin > 16) {
-            // Often already in order: equal depths come out of the radix sort later face first.
-            if (!std::is_sorted(items + begin, items + end, frontFirst))
-                std::sort(items + begin, items + end, frontFirst);
-        } else {
-            for (size_t i = begin + 1; i < end; i++) {  // insertion sort
-                const uint64_t item = items[i];
-                size_t j = i;
-                for (; j > begin && frontFirst(item, items[j - 1]); j--)
-                    items[j] = items[j - 1];
-                items[j] = item;
+        if (end - begin > 1) {
+            run.clear();
+            for (size_t i = begin; i < end; i++)
+                run.emplace_back(exactKeys[entryFace(items[i])], items[i]);
+            if (!std::is_sorted(run.begin(), run.end(), frontFirst)) {
+                std::sort(run.begin(), run.end(), frontFirst);
+                for (size_t i = begin; i < end; i++)
+                    items[i] = run[i - begin].second;
             }
         }
         begin = end;
@@ -224,7 +225,7 @@ struct FaceRows {
 fresh ones would be fresh pages, and their page faults cost more than drawing a small mesh. */
 struct MeshWorkspace {
     std::vector<FixedPoint> snapped;  //!< per vertex
-    std::vector<uint64_t> keys;       //!< per face
+    std::vector<double> depths;       //!< per face: its mean depth
     std::vector<FaceRows> rows;       //!< per face
     std::vector<uint64_t> binned;     //!< per face and band it crosses
 
@@ -233,7 +234,7 @@ struct MeshWorkspace {
 
     size_t capacityBytes() const
     {
-        return snapped.capacity() * sizeof(FixedPoint) + keys.capacity() * sizeof(uint64_t) +
+        return snapped.capacity() * sizeof(FixedPoint) + depths.capacity() * sizeof(double) +
                rows.capacity() * sizeof(FaceRows) + binned.capacity() * sizeof(uint64_t);
     }
 
@@ -270,16 +271,17 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     });
 
     // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
-    // its area; per chunk, the range of the keys (for quantizing them below) and the faces and
+    // its area; per chunk, the range of the depths (for quantizing them below) and the faces and
     // area each band receives (for binning).
-    std::vector<uint64_t>& keys = work.keys;  // culled faces keep stale keys, never used
-    keys.resize(byDepth ? faceCount : 0);
+    std::vector<double>& depths = work.depths;  // culled faces keep stale depths, never used
+    depths.resize(byDepth ? faceCount : 0);
     std::vector<FaceRows>& rows = work.rows;
     rows.resize(faceCount);
     // Enough chunks to balance the threads, few enough to bound the per-chunk band tables.
     const int chunkCount = std::min((faceCount + 1023) / 1024, std::max(32, 4 * getNumThreads()));
     const int chunkFaces = chunkCount ? (faceCount + chunkCount - 1) / chunkCount : 0;
-    std::vector<std::pair<uint64_t, uint64_t>> chunkKeyRange(chunkCount, {UINT64_MAX, 0});
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, double>> chunkDepthRange(chunkCount, {inf, -inf});
     // size_t: a face on a tall canvas can cross thousands of bands.
     std::vector<size_t> binCursor(size_t(chunkCount) * bandCount, 0);
     std::vector<double> binArea(size_t(chunkCount) * bandCount, 0.0);
@@ -290,7 +292,7 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int chunk = chunks.start; chunk < chunks.end; chunk++) {
-            uint64_t lo = UINT64_MAX, hi = 0;
+            double lo = inf, hi = -inf;  // over finite depths
             size_t* count = &binCursor[size_t(chunk) * bandCount];
             double* area = &binArea[size_t(chunk) * bandCount];
             const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
@@ -303,9 +305,11 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                         (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
                     if (std::isnan(mean))
                         continue;  // no place in the order: not drawn
-                    keys[i] = ascendingKey(mean);
-                    lo = std::min(lo, keys[i]);
-                    hi = std::max(hi, keys[i]);
+                    depths[i] = mean;
+                    if (std::abs(mean) < inf) {
+                        lo = std::min(lo, mean);
+                        hi = std::max(hi, mean);
+                    }
                 }
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
                 if (!triangleRows(p, size, r.begin, r.end))
@@ -326,23 +330,20 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
                     area[k] += areaPerRow * inBand;
                 });
             }
-            chunkKeyRange[chunk] = {lo, hi};
+            chunkDepthRange[chunk] = {lo, hi};
         }
     });
 
-    // Keys are sorted by 32 bits: (key - minKey) >> keyShift. When the keys span more than 32
-    // bits, faces sharing a quantized key are ordered exactly afterwards (refineEqualKeys).
-    uint64_t minKey = UINT64_MAX, maxKey = 0;
-    for (const auto& range : chunkKeyRange) {
-        minKey = std::min(minKey, range.first);
-        maxKey = std::max(maxKey, range.second);
+    // Faces are sorted by 32-bit keys, their depths quantized linearly; faces sharing a key are
+    // ordered exactly afterwards (refineEqualKeys).
+    double minDepth = inf, maxDepth = -inf;
+    for (const auto& range : chunkDepthRange) {
+        minDepth = std::min(minDepth, range.first);
+        maxDepth = std::max(maxDepth, range.second);
     }
-    int keyShift = 0;
-    if (minKey < maxKey)
-        while (((maxKey - minKey) >> keyShift) > UINT32_MAX)
-            keyShift++;
+    const double depthScale = maxDepth > minDepth ? double(UINT32_MAX) / (maxDepth - minDepth) : 0;
     auto quantizedKey = [&](int face) {
-        return byDepth ? uint32_t((keys[face] - minKey) >> keyShift) : uint32_t(0);
+        return byDepth ? quantizeDepth(depths[face], minDepth, depthScale) : uint32_t(0);
     };
 
     // Pass 2, parallel over the same chunks: the entries binned by band (a counting sort), each
@@ -379,6 +380,7 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
         CoverageBits coverage(bandRows, width);
         std::vector<uint64_t> scratch;
+        std::vector<std::pair<double, uint64_t>> refineRun;
         int rowLeft[32];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -401,9 +403,8 @@ void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* bac
             uint64_t* order = binned.data() + bandStart[band];
             const size_t orderSize = bandStart[band + 1] - bandStart[band];
             if (byDepth) {
-                const bool coarse = sortBandEntries(order, orderSize, scratch);
-                if (coarse || keyShift > 0)
-                    refineEqualKeys(order, orderSize, keys.data());
+                sortBandEntries(order, orderSize, scratch);
+                refineEqualKeys(order, orderSize, depths.data(), refineRun);
             }
 
             // Sets up faces[0 .. count) into `batch`, returning how many cover something. Faces
