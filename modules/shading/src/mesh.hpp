@@ -1,12 +1,13 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
-// Mesh drawing on the core. The painter's image (faces far to near, each overwriting) is built
-// front to back instead, so every pixel is written once: a coverage bit mask keeps the first
-// (frontmost) write of each pixel, which is exactly what the painter's algorithm leaves visible.
+// Mesh drawing on the core: the painter's image (faces far to near, each overwriting).
 //
 // The canvas is cut into bands of rows, rendered in parallel. Each band sorts its own faces and
-// runs sequentially, so the image never depends on the thread count. Per face, only a sort key
-// and a row range are kept between passes: setup happens in the band that draws the face.
+// runs sequentially, so the image never depends on the thread count. A band with little overdraw
+// is painted back to front; one with more is built front to back, where a coverage bit mask keeps
+// the first (frontmost) write of each pixel: exactly what the painter's algorithm leaves visible,
+// with each pixel written once. Per face, only a depth, a row range and its bin entries are kept
+// between passes: setup happens in the band that draws the face.
 #ifndef OPENCV_SHADING_MESH_HPP
 #define OPENCV_SHADING_MESH_HPP
 
@@ -246,10 +247,10 @@ struct MeshWorkspace {
 };
 
 /** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
-order), writing each covered pixel once. With `background`, pixels no face covers are set to it
-(so render() writes every pixel exactly once, with no separate clear). */
+order). With `background`, pixels no face covers are set to it (render() needs no separate
+clear). */
 template <class Shader, typename T>
-void drawMeshFrontToBack(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* background)
+void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* background)
 {
     const Size size = canvas.size();
     const int faceCount = int(mesh.faces.size());

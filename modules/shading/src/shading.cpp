@@ -92,9 +92,9 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
             bg[k] = saturate_cast<T>((*background)[k]);
     const Vec<T, 3>* fill = background ? &bg : nullptr;
     if (shadeType == SHADE_FLAT)
-        drawMeshFrontToBack<FlatShader<T>, T>(canvas, mesh, fill);
+        drawMeshInBands<FlatShader<T>, T>(canvas, mesh, fill);
     else
-        drawMeshFrontToBack<GouraudShader<T>, T>(canvas, mesh, fill);
+        drawMeshInBands<GouraudShader<T>, T>(canvas, mesh, fill);
 }
 
 }  // namespace
