@@ -259,3 +259,21 @@ TEST(ShadingTriangle, GouraudColoursBeyondFloatRange)
                      std::vector<Vec3d>{{89, 2.5, 64}, {8.7, 239.3, 13.1}, {62.9, -1.7e48, 190.4}});
     EXPECT_EQ(canvas.at<Vec3b>(18, 3), Vec3b(89, 2, 64));
 }
+
+// Found by the fuzzer: with a colour of -2.8e40, the span's first value is below float's range
+// (-inf) and stepping by a huge positive step gave -inf + inf = NaN. Such colours are evaluated per
+// pixel: the sample (10, 16) is -2.8e40 * 0.01156... = -3.2085e38, within float's range (worked out
+// from its barycentric weight: the vertex at (~0, 22) weighs 0.0115607 there).
+TEST(ShadingTriangle, GouraudHugeColoursNeverNaN)
+{
+    Mat canvas(24, 16, CV_32FC3, Scalar::all(0));
+    shading::gouraud(canvas,
+                     std::vector<Point2d>{{2.7863571129009264e-313, 22}, {14, -3}, {10, 16.5}},
+                     std::vector<Vec3d>{{-4, -2.7753559049153819e+40, -4}, {-4, -4, -4}, {-4, -4, -4}});
+    for (int y = 0; y < canvas.rows; y++)
+        for (int x = 0; x < canvas.cols; x++)
+            for (int k = 0; k < 3; k++)
+                ASSERT_FALSE(std::isnan(canvas.at<Vec3f>(y, x)[k])) << x << "," << y << "," << k;
+    EXPECT_NEAR(canvas.at<Vec3f>(16, 10)[1], -3.2085e38, 1e34);
+    EXPECT_EQ(canvas.at<Vec3f>(16, 10)[0], -4.f);
+}

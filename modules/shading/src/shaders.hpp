@@ -135,6 +135,8 @@ struct GouraudShader {
     //! Narrow triangles: edge function i (opposite vertex i) at pixel (x, y) is
     //! edgeAt0[i] + edgeDx[i] * x + edgeDy[i] * y, exactly, in 64 bits.
     int64_t edgeAt0[3], edgeDx[3], edgeDy[3];
+    //! A colour beyond +-1e37 (or not finite): values are computed per pixel, not stepped.
+    bool perPixel;
 
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3])
     {
@@ -149,9 +151,12 @@ struct GouraudShader {
                 edgeDy[i] = (b.x - a.x) * kSubpixelOne;
             }
         }
+        perPixel = false;
         for (int i = 0; i < 3; i++)
-            for (int k = 0; k < 3; k++)
+            for (int k = 0; k < 3; k++) {
                 color[i][k] = (*c[order[i]])[k];
+                perPixel |= !(std::abs(color[i][k]) <= 1e37);
+            }
         invArea2 = 1.0 / edgeValue(p[0], p[1], p[2], t.narrow);
         // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
         const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,
@@ -176,20 +181,37 @@ struct GouraudShader {
         return double(Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x));
     }
 
-    void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
-                    int xEnd) const
+    //! Barycentric weights of the sample (x, y): exact edge functions, one rounding each.
+    void weightsAt(const TriangleSetup& t, int x, int y, double& w0, double& w1, double& w2) const
     {
-        double w0, w1, w2;
         if (t.narrow) {  // the same integers as edgeValue's, from precomputed coefficients
-            w0 = double(edgeAt0[0] + edgeDx[0] * spanBegin + edgeDy[0] * y) * invArea2;
-            w1 = double(edgeAt0[1] + edgeDx[1] * spanBegin + edgeDy[1] * y) * invArea2;
-            w2 = double(edgeAt0[2] + edgeDx[2] * spanBegin + edgeDy[2] * y) * invArea2;
+            w0 = double(edgeAt0[0] + edgeDx[0] * x + edgeDy[0] * y) * invArea2;
+            w1 = double(edgeAt0[1] + edgeDx[1] * x + edgeDy[1] * y) * invArea2;
+            w2 = double(edgeAt0[2] + edgeDx[2] * x + edgeDy[2] * y) * invArea2;
         } else {
-            const FixedPoint q = {int64_t(spanBegin) * kSubpixelOne, int64_t(y) * kSubpixelOne};
+            const FixedPoint q = {int64_t(x) * kSubpixelOne, int64_t(y) * kSubpixelOne};
             w0 = edgeValue(t.mid, t.bottom, q, false) * invArea2;
             w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
             w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
         }
+    }
+
+    void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
+                    int xEnd) const
+    {
+        if (perPixel) {
+            // Huge colours: stepping in float could overflow where the values do not.
+            for (int x = xBegin; x < xEnd; x++) {
+                double w0, w1, w2;
+                weightsAt(t, x, y, w0, w1, w2);
+                for (int k = 0; k < 3; k++)
+                    row[3 * x + k] =
+                        toChannel<T>(float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]));
+            }
+            return;
+        }
+        double w0, w1, w2;
+        weightsAt(t, spanBegin, y, w0, w1, w2);
 #if CV_SIMD128 && CV_SIMD128_64F
         if constexpr (std::is_same<T, float>::value) {
             // The scalar sums below, two channels per lane pair, in the same order.
