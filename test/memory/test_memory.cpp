@@ -5,7 +5,7 @@
 // Documented bound (README, "Hard use"): while drawing a mesh of K faces and L vertices, the
 // library holds at most kBytesPerFace * K + kBytesPerVertex * L bytes (faces crossing several
 // row bands add 8 bytes per extra band), plus a few kilobytes per thread for coverage masks.
-// Buffers of at most 64 MB are kept by the calling thread for its next call; bigger ones are
+// Buffers of at most 16 MB are kept by the calling thread for its next call; bigger ones are
 // released before the call returns (checked below).
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>

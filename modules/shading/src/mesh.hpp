@@ -216,10 +216,9 @@ struct MeshData {
     }
 };
 
-//! A face's rows on the canvas and its area, from the key pass.
+//! The rows a face may cover on the canvas, from the key pass.
 struct FaceRows {
     int begin, end;  //!< rows [begin, end); empty: culled
-    float area;      //!< in pixels, for estimating each band's overdraw
 };
 
 /** The per-face and per-vertex buffers of a mesh draw, kept by each calling thread between calls:
@@ -231,7 +230,7 @@ struct MeshWorkspace {
     std::vector<uint64_t> binned;     //!< per face and band it crosses
 
     //! Calls after one that needed more than this reallocate instead of holding it.
-    static constexpr size_t kKeepBytes = size_t(64) << 20;
+    static constexpr size_t kKeepBytes = size_t(16) << 20;
 
     size_t capacityBytes() const
     {
@@ -300,7 +299,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             for (int i = chunk * chunkFaces; i < end; i++) {
                 const Vec3i& f = mesh.faces[i];
                 FaceRows& r = rows[i];
-                r = {0, 0, 0.f};
+                r = {0, 0};
                 if (byDepth) {
                     const double mean =
                         (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
@@ -315,15 +314,17 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
                 if (!triangleRows(p, size, r.begin, r.end))
                     continue;
-                r.area = float(std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
-                                        double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
-                               (0.5 / double(kSubpixelOne * kSubpixelOne)));
+                // In pixels, for estimating each band's overdraw.
+                const double faceArea =
+                    std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
+                             double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
+                    (0.5 / double(kSubpixelOne * kSubpixelOne));
                 if ((r.begin >> bandShift) == ((r.end - 1) >> bandShift)) {
                     count[r.begin >> bandShift]++;  // the common case: within one band
-                    area[r.begin >> bandShift] += r.area;
+                    area[r.begin >> bandShift] += faceArea;
                     continue;
                 }
-                const double areaPerRow = r.area / (r.end - r.begin);
+                const double areaPerRow = faceArea / (r.end - r.begin);
                 forEachBand(r, [&](int k) {
                     count[k]++;
                     const int inBand = std::min(r.end, (k + 1) * bandRows) -
