@@ -30,27 +30,33 @@ std::vector<T> rowsOf(const Mat& m)
 
 class ShadingScenes : public testing::TestWithParam<std::string> {};
 
-TEST_P(ShadingScenes, EqualReferenceForAnyThreadCount)
+namespace {
+
+// The scene at 96 pixels, stretched horizontally by xScale, against the reference.
+void expectEqualReference(const shading_perf::Scene& scene, int xScale)
 {
-    const shading_perf::Scene scene = shading_perf::makeScene(GetParam(), 96);
     const auto& m = scene.mesh;
-    const std::vector<Point2d> verts = rowsOf<Point2d>(m.verts2d);
+    Mat verts2d = m.verts2d.clone();
+    verts2d.reshape(1, m.verts2d.rows).col(0) *= xScale;
+    const Size size(scene.size.width * xScale, scene.size.height);
+    const std::vector<Point2d> verts = rowsOf<Point2d>(verts2d);
     const std::vector<Vec3i> faces = rowsOf<Vec3i>(m.faces);
     const std::vector<Vec3d> colors = rowsOf<Vec3d>(m.vcolors);
     const std::vector<double> depth = rowsOf<double>(m.depth);
     const int saved = getNumThreads();
     for (bool gouraud : {false, true}) {
-        const Mat expected = shading_ref::render(verts, faces, colors, depth, gouraud, scene.size);
+        const Mat expected = shading_ref::render(verts, faces, colors, depth, gouraud, size);
         Mat single;
         for (int threads : {1, 2}) {
             setNumThreads(threads);
             Mat img;
-            shading::render(m.verts2d, m.faces, m.vcolors, m.depth, img,
-                            gouraud ? shading::SHADE_GOURAUD : shading::SHADE_FLAT, scene.size);
+            shading::render(verts2d, m.faces, m.vcolors, m.depth, img,
+                            gouraud ? shading::SHADE_GOURAUD : shading::SHADE_FLAT, size);
             // Flat: neighbouring faces have different mean colours, so a pixel given to the wrong
             // face shows; Gouraud: colours within float rounding of the double reference.
             EXPECT_LE(shading_test::maxAbsDiff(img, expected), gouraud ? 1e-4 : 1e-6)
-                << scene.name << (gouraud ? " Gouraud" : " flat") << ", " << threads << " threads";
+                << scene.name << (gouraud ? " Gouraud" : " flat") << ", " << threads
+                << " threads, " << size;
             if (single.empty())
                 single = img;
             else
@@ -58,6 +64,20 @@ TEST_P(ShadingScenes, EqualReferenceForAnyThreadCount)
         }
     }
     setNumThreads(saved);
+}
+
+}  // namespace
+
+TEST_P(ShadingScenes, EqualReferenceForAnyThreadCount)
+{
+    expectEqualReference(shading_perf::makeScene(GetParam(), 96), 1);
+}
+
+// 768 float pixels per row: bands of 16 rows instead of 32 (see bandRowsLog2For), as on big
+// canvases.
+TEST_P(ShadingScenes, WideCanvasEqualsReference)
+{
+    expectEqualReference(shading_perf::makeScene(GetParam(), 96), 8);
 }
 
 INSTANTIATE_TEST_SUITE_P(BenchmarkScenes, ShadingScenes,
