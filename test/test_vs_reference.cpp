@@ -825,48 +825,41 @@ TEST(ShadingVsReference, DrawMeshGouraudRandomDepthTies)
     }
 }
 
-TEST(ShadingVsReference, DrawMeshRandomDepths)
+namespace {
+
+// Random 96 x 72 meshes of 150 vertices and 200 faces with the given depths, flat and Gouraud,
+// n of each: drawMesh equals the reference.
+void expectRandomMeshesMatch(uint64 seed, int n, Depths depths)
 {
-    cv::RNG rng(scaledSeed(92));
+    cv::RNG rng(seed);
     for (bool gouraud : { false, true })
-        for (int i = 0, n = scaled(4); i < n; i++) {
-            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::Random, false);
+        for (int i = 0; i < n; i++) {
+            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, depths, false);
             EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
                 << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
         }
+}
+
+}  // namespace
+
+TEST(ShadingVsReference, DrawMeshRandomDepths)
+{
+    expectRandomMeshesMatch(scaledSeed(92), scaled(4), Depths::Random);
 }
 
 TEST(ShadingVsReference, DrawMeshCrowdedDepths)
 {
-    cv::RNG rng(scaledSeed(131));
-    for (bool gouraud : { false, true })
-        for (int i = 0, n = scaled(4); i < n; i++) {
-            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::Crowded, false);
-            EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
-                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
-        }
+    expectRandomMeshesMatch(scaledSeed(131), scaled(4), Depths::Crowded);
 }
 
 TEST(ShadingVsReference, DrawMeshInfiniteDepths)
 {
-    cv::RNG rng(scaledSeed(137));
-    for (bool gouraud : { false, true })
-        for (int i = 0, n = scaled(3); i < n; i++) {
-            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::Infinite, false);
-            EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
-                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
-        }
+    expectRandomMeshesMatch(scaledSeed(137), scaled(3), Depths::Infinite);
 }
 
 TEST(ShadingVsReference, DrawMeshEmptyDepthKeepsFaceOrder)
 {
-    cv::RNG rng(scaledSeed(93));
-    for (bool gouraud : { false, true })
-        for (int i = 0, n = scaled(4); i < n; i++) {
-            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::None, false);
-            EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
-                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
-        }
+    expectRandomMeshesMatch(scaledSeed(93), scaled(4), Depths::None);
 }
 
 TEST(ShadingVsReference, DrawMeshEightBit)
@@ -908,13 +901,7 @@ TEST(ShadingVsReference, DrawMeshFloatInputs)
 // whose means are equal as computed keep their order.
 TEST(ShadingVsReference, DrawMeshDepthTenths)
 {
-    cv::RNG rng(scaledSeed(101));
-    for (bool gouraud : { false, true })
-        for (int i = 0, n = scaled(3); i < n; i++) {
-            const Mesh m = randomMesh(rng, cv::Size(96, 72), 150, 200, Depths::Tenths, false);
-            EXPECT_TRUE(meshMatches(m, cv::Size(96, 72), CV_32FC3, gouraud))
-                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " #" << i;
-        }
+    expectRandomMeshesMatch(scaledSeed(101), scaled(3), Depths::Tenths);
 }
 
 // Faces with NaN, infinite or too large vertices are skipped; faces with +-1e9 or 2^40
