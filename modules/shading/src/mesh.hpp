@@ -140,6 +140,31 @@ public:
 
     void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
 
+    /** Bit r - rowBegin is set when pixels [colFirst, colLast] of row r are all final, for r in
+    [rowBegin, rowEnd) (at most 32 rows): a face whose box lies within such rows adds nothing
+    there. An occlusion test per face, far cheaper than walking it. */
+    uint32_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast) const
+    {
+        const int first = colFirst >> 6, last = colLast >> 6;
+        const uint64_t firstMask = ~uint64_t(0) << (colFirst & 63);
+        const uint64_t lastMask = ~uint64_t(0) >> (63 - (colLast & 63));
+        const uint64_t* words = bits_.data() + size_t(rowBegin) * wordsPerRow_;
+        uint32_t result = 0;
+        for (int r = 0; r < rowEnd - rowBegin; r++, words += wordsPerRow_) {
+            // Bits outside the box are counted as final.
+            uint64_t all;
+            if (first == last) {
+                all = words[first] | ~(firstMask & lastMask);
+            } else {
+                all = (words[first] | ~firstMask) & (words[last] | ~lastMask);
+                for (int w = first + 1; w < last && all == ~uint64_t(0); w++)
+                    all &= words[w];
+            }
+            result |= uint32_t(all == ~uint64_t(0)) << r;
+        }
+        return result;
+    }
+
     /** Marks [xBegin, xEnd) of `row` final and calls run(a, b) for every maximal run [a, b) of it
     that was not final before (split at 64-pixel word boundaries). Returns the pixels newly
     marked. */
@@ -218,17 +243,12 @@ struct MeshData {
     }
 };
 
-//! The rows a face may cover on the canvas, from the key pass.
-struct FaceRows {
-    int begin, end;  //!< rows [begin, end); empty: culled
-};
-
 /** The per-face and per-vertex buffers of a mesh draw, kept by each calling thread between calls:
 fresh ones would be fresh pages, and their page faults cost more than drawing a small mesh. */
 struct MeshWorkspace {
     std::vector<FixedPoint> snapped;  //!< per vertex
     std::vector<double> depths;       //!< per face: its mean depth
-    std::vector<FaceRows> rows;       //!< per face
+    std::vector<SampleBox> boxes;     //!< per face; no rows: culled
     std::vector<uint64_t> binned;     //!< per face and band it crosses
 
     //! Calls after one that needed more than this reallocate instead of holding it.
@@ -237,7 +257,7 @@ struct MeshWorkspace {
     size_t capacityBytes() const
     {
         return snapped.capacity() * sizeof(FixedPoint) + depths.capacity() * sizeof(double) +
-               rows.capacity() * sizeof(FaceRows) + binned.capacity() * sizeof(uint64_t);
+               boxes.capacity() * sizeof(SampleBox) + binned.capacity() * sizeof(uint64_t);
     }
 
     static MeshWorkspace& ofThisThread()
@@ -277,8 +297,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     // area each band receives (for binning).
     std::vector<double>& depths = work.depths;  // culled faces keep stale depths, never used
     depths.resize(byDepth ? faceCount : 0);
-    std::vector<FaceRows>& rows = work.rows;
-    rows.resize(faceCount);
+    std::vector<SampleBox>& boxes = work.boxes;
+    boxes.resize(faceCount);
     // Enough chunks to balance the threads, few enough to bound the per-chunk band tables.
     const int chunkCount = std::min((faceCount + 1023) / 1024, std::max(32, 4 * getNumThreads()));
     const int chunkFaces = chunkCount ? (faceCount + chunkCount - 1) / chunkCount : 0;
@@ -287,9 +307,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     // size_t: a face on a tall canvas can cross thousands of bands.
     std::vector<size_t> binCursor(size_t(chunkCount) * bandCount, 0);
     std::vector<double> binArea(size_t(chunkCount) * bandCount, 0.0);
-    auto forEachBand = [&](const FaceRows& r, auto&& fn) {
-        if (r.begin < r.end)
-            for (int k = r.begin >> bandShift; k <= (r.end - 1) >> bandShift; k++)
+    auto forEachBand = [&](const SampleBox& b, auto&& fn) {
+        if (b.rowBegin < b.rowEnd)
+            for (int k = b.rowBegin >> bandShift; k <= (b.rowEnd - 1) >> bandShift; k++)
                 fn(k);
     };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
@@ -300,8 +320,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
             for (int i = chunk * chunkFaces; i < end; i++) {
                 const Vec3i& f = mesh.faces[i];
-                FaceRows& r = rows[i];
-                r = {0, 0};
+                SampleBox& box = boxes[i];
+                box.rowBegin = box.rowEnd = 0;  // culled
                 if (byDepth) {
                     const double mean =
                         (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
@@ -314,23 +334,26 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     }
                 }
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                if (!triangleRows(p, size, r.begin, r.end))
+                if (!triangleBox(p, size, box)) {
+                    box.rowBegin = box.rowEnd = 0;
                     continue;
+                }
                 // In pixels, for estimating each band's overdraw.
                 const double faceArea =
                     std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
                              double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
                     (0.5 / double(kSubpixelOne * kSubpixelOne));
-                if ((r.begin >> bandShift) == ((r.end - 1) >> bandShift)) {
-                    count[r.begin >> bandShift]++;  // the common case: within one band
-                    area[r.begin >> bandShift] += faceArea;
+                const int firstBand = box.rowBegin >> bandShift;
+                if (firstBand == (box.rowEnd - 1) >> bandShift) {
+                    count[firstBand]++;  // the common case: within one band
+                    area[firstBand] += faceArea;
                     continue;
                 }
-                const double areaPerRow = faceArea / (r.end - r.begin);
-                forEachBand(r, [&](int k) {
+                const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
+                forEachBand(box, [&](int k) {
                     count[k]++;
-                    const int inBand = std::min(r.end, (k + 1) * bandRows) -
-                                       std::max(r.begin, k * bandRows);
+                    const int inBand = std::min(box.rowEnd, (k + 1) * bandRows) -
+                                       std::max(box.rowBegin, k * bandRows);
                     area[k] += areaPerRow * inBand;
                 });
             }
@@ -372,7 +395,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             const int begin = c * chunkFaces;
             for (int i = std::min(faceCount, begin + chunkFaces); i-- > begin;) {
                 const uint64_t entry = bandEntry(quantizedKey(i), i);
-                forEachBand(rows[i], [&](int k) { binned[cursor[k]++] = entry; });
+                forEachBand(boxes[i], [&](int k) { binned[cursor[k]++] = entry; });
             }
         }
     });
@@ -389,6 +412,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
         struct BatchFace {
             TriangleSetup triangle;
             Shader shader;
+            int face;
         };
         static_assert(std::is_trivially_destructible<BatchFace>::value,
                       "batch entries are overwritten in place, never destroyed");
@@ -433,7 +457,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     const Vec3i& f = corners[i];
                     const Vec3d* const c[3] = {&mesh.colors[f[0]], &mesh.colors[f[1]],
                                                &mesh.colors[f[2]]};
-                    new (&batch[prepared++]) BatchFace{triangle, Shader(triangle, vertexOrder, c)};
+                    new (&batch[prepared++]) BatchFace{triangle, Shader(triangle, vertexOrder, c), faces[i]};
                 }
                 return prepared;
             };
@@ -468,25 +492,35 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             std::fill(rowLeft, rowLeft + bandRows, width);
             uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
-            auto hidden = [&](int rowBegin, int rowEnd) {  // all its rows here are final
-                const int r0 = std::max(rowBegin, y0) - y0, r1 = std::min(rowEnd, y1) - y0;
-                return (uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows) == 0;
+            // The rows of `box` within the band, as bits from y0; those whose part of the box
+            // is final already leave `visible`.
+            auto visibleRows = [&](const SampleBox& box, uint32_t& visible) {
+                const int r0 = std::max(box.rowBegin, y0) - y0, r1 = std::min(box.rowEnd, y1) - y0;
+                visible = uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows;
+                if (visible)
+                    visible &= ~(coverage.finalRows(r0, r1, box.colFirst, box.colLast) << r0);
+                return visible != 0;
             };
             for (size_t next = 0; next < orderSize && fullRows != allRows;) {
                 int count = 0;
                 for (; next < orderSize && count < kBatch; next++) {
                     const int face = entryFace(order[next]);
-                    if (!hidden(rows[face].begin, rows[face].end))  // else skipped unread
+                    uint32_t rowsToDraw;
+                    if (visibleRows(boxes[face], rowsToDraw))  // else skipped unread
                         batchFaces[count++] = face;
                 }
                 const int batchSize = prepareBatch(batchFaces, count);
                 for (int i = 0; i < batchSize; i++) {
                     const BatchFace& bf = batch[i];
-                    if (hidden(bf.triangle.rowBegin, bf.triangle.rowEnd))
+                    uint32_t rowsToDraw;
+                    if (!visibleRows(boxes[bf.face], rowsToDraw))  // hidden by earlier faces
                         continue;
-                    walkTriangle(bf.triangle, y0, y1, width, [&](int y, int xBegin, int xEnd) {
+                    const int firstRow = y0 + __builtin_ctz(rowsToDraw);
+                    const int lastRow = y0 + 31 - __builtin_clz(rowsToDraw);
+                    walkTriangle(bf.triangle, firstRow, lastRow + 1, width,
+                                 [&](int y, int xBegin, int xEnd) {
                         const int r = y - y0;
-                        if (rowLeft[r] == 0)
+                        if (!(rowsToDraw >> r & 1))
                             return;
                         T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
                         rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {

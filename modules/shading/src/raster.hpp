@@ -156,13 +156,13 @@ struct TriangleSetup {
     bool narrow;                   //!< walkers may use 64-bit arithmetic (see EdgeWalker)
 };
 
-//! Pixel row bound ceil(y / 256) clamped to [0, limit].
-inline int clampedRow(int64_t fixedY, int limit)
+//! ceil(v / 256), the first pixel row or column at or after fixed-point v, clamped to [0, limit].
+inline int ceilToPixel(int64_t fixed, int limit)
 {
-    // ceil(y / 256) as a shift: >> of a negative value is arithmetic on every compiler we build
+    // ceil(v / 256) as a shift: >> of a negative value is arithmetic on every compiler we build
     // with (and defined so from C++20).
-    const int64_t row = (fixedY + kSubpixelOne - 1) >> kSubpixelBits;
-    return int(std::min<int64_t>(std::max<int64_t>(row, 0), limit));
+    const int64_t pixel = (fixed + kSubpixelOne - 1) >> kSubpixelBits;
+    return int(std::min<int64_t>(std::max<int64_t>(pixel, 0), limit));
 }
 
 inline bool above(const FixedPoint& a, const FixedPoint& b)
@@ -170,9 +170,15 @@ inline bool above(const FixedPoint& a, const FixedPoint& b)
     return a.y < b.y || (a.y == b.y && a.x < b.x);
 }
 
-//! The rows [rowBegin, rowEnd) triangle p may cover on a target of `size` pixels, without the
-//! full setup (for binning). False when it surely covers nothing there.
-inline bool triangleRows(const FixedPoint p[3], Size size, int& rowBegin, int& rowEnd)
+/** The box of samples triangle p may cover on a target of `size` pixels, without the full setup
+(for binning and occlusion tests): rows [rowBegin, rowEnd), columns [colFirst, colLast]. False
+when it surely covers nothing there. */
+struct SampleBox {
+    int rowBegin, rowEnd;
+    int colFirst, colLast;
+};
+
+inline bool triangleBox(const FixedPoint p[3], Size size, SampleBox& box)
 {
     if (!isValid(p))
         return false;
@@ -180,9 +186,12 @@ inline bool triangleRows(const FixedPoint p[3], Size size, int& rowBegin, int& r
     const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
     if (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne)
         return false;
-    rowBegin = clampedRow(std::min({p[0].y, p[1].y, p[2].y}), size.height);
-    rowEnd = clampedRow(std::max({p[0].y, p[1].y, p[2].y}), size.height);
-    return rowBegin < rowEnd;
+    box.rowBegin = ceilToPixel(std::min({p[0].y, p[1].y, p[2].y}), size.height);
+    box.rowEnd = ceilToPixel(std::max({p[0].y, p[1].y, p[2].y}), size.height);
+    // Samples x with xMin <= 256 x <= xMax; clamping keeps a superset, which is all a box needs.
+    box.colFirst = std::min(ceilToPixel(xMin, size.width), size.width - 1);
+    box.colLast = int(std::min<int64_t>(xMax >> kSubpixelBits, size.width - 1));
+    return box.rowBegin < box.rowEnd && box.colFirst <= box.colLast;
 }
 
 /** Sets up the triangle with snapped vertices `in` for a target of `size` pixels. Returns false
@@ -227,9 +236,9 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
     t.top = p[0];
     t.mid = p[1];
     t.bottom = p[2];
-    t.rowBegin = clampedRow(p[0].y, size.height);
-    t.rowMid = clampedRow(p[1].y, size.height);
-    t.rowEnd = clampedRow(p[2].y, size.height);
+    t.rowBegin = ceilToPixel(p[0].y, size.height);
+    t.rowMid = ceilToPixel(p[1].y, size.height);
+    t.rowEnd = ceilToPixel(p[2].y, size.height);
     t.longEdgeLeft = sign < 0;
     return t.rowBegin < t.rowEnd;
 }
