@@ -331,3 +331,50 @@ TEST(ShadingMesh, ConcurrentCallsIntoSeparateCanvases)
     for (const Mat& m : results)
         EXPECT_EQ(maxAbsDiff(m, expected), 0.0);
 }
+
+// Occlusion by boxes: behind a near rectangle, farther rectangles peek out by exactly one sample
+// column on its right or left, at 64-pixel word edges and inside words. The front-to-back pass
+// skips a face only when every sample of its box is final, so that one column must still show
+// the nearest far rectangle; everything else is the near one. Expected pixels worked by hand.
+TEST(ShadingMesh, FacesPeekingOutByOneColumnStayVisible)
+{
+    const Size size(200, 40);
+    for (int edge : {30, 62, 63, 64, 127, 128}) {
+        for (bool peekRight : {true, false}) {
+            // Samples [first, last] of every row: x from first - 0.5 to last + 0.5.
+            std::vector<Point2d> verts;
+            std::vector<Vec3i> faces;
+            std::vector<Vec3d> colors;
+            std::vector<double> depth;
+            auto addRect = [&](int first, int last, const Vec3d& color, double d) {
+                const int base = int(verts.size());
+                for (const Point2d& p : {Point2d(first - 0.5, -1), Point2d(last + 0.5, -1),
+                                         Point2d(first - 0.5, size.height + 1),
+                                         Point2d(last + 0.5, size.height + 1)}) {
+                    verts.push_back(p);
+                    colors.push_back(color);
+                    depth.push_back(d);
+                }
+                faces.push_back({base, base + 1, base + 3});
+                faces.push_back({base, base + 3, base + 2});
+            };
+            const int nearFirst = peekRight ? 0 : edge + 1;
+            const int nearLast = peekRight ? edge : size.width - 1;
+            const int peek = peekRight ? edge + 1 : edge;
+            // Many far layers, so the band has enough overdraw for the front-to-back pass; the
+            // nearest (depth 1) is listed last.
+            for (int layer = 40; layer >= 1; layer--)
+                addRect(peekRight ? 0 : peek, peekRight ? peek : size.width - 1,
+                        Vec3d(0, layer / 64.0, 0), layer);  // exact in float
+            addRect(nearFirst, nearLast, Vec3d(1, 0, 0), 0);
+            Mat img;
+            shading::render(verts, faces, colors, depth, img, shading::SHADE_FLAT, size,
+                            Scalar::all(1));
+            Mat expected(size, CV_32FC3, Scalar::all(1));
+            expected.colRange(nearFirst, nearLast + 1).setTo(Scalar(1, 0, 0));
+            expected.col(peek).setTo(Scalar(0, 1 / 64.0, 0));
+            EXPECT_EQ(maxAbsDiff(img, expected), 0.0)
+                << "edge " << edge << (peekRight ? " right" : " left");
+        }
+    }
+}
