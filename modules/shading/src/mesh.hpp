@@ -304,8 +304,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     const int chunkFaces = chunkCount ? (faceCount + chunkCount - 1) / chunkCount : 0;
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<std::pair<double, double>> chunkDepthRange(chunkCount, {inf, -inf});
-    // size_t: a face on a tall canvas can cross thousands of bands.
-    std::vector<size_t> binCursor(size_t(chunkCount) * bandCount, 0);
+    // Per chunk and band: after pass 1, the faces in the low 32 bits and those wound clockwise
+    // in the high 32 (one add per face); then the chunk's first slot in the band's list.
+    // uint64_t: a face on a tall canvas can cross thousands of bands.
+    constexpr uint64_t kClockwiseOne = uint64_t(1) << 32;
+    std::vector<uint64_t> binCursor(size_t(chunkCount) * bandCount, 0);
     std::vector<double> binArea(size_t(chunkCount) * bandCount, 0.0);
     auto forEachBand = [&](const SampleBox& b, auto&& fn) {
         if (b.rowBegin < b.rowEnd)
@@ -315,7 +318,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int chunk = chunks.start; chunk < chunks.end; chunk++) {
             double lo = inf, hi = -inf;  // over finite depths
-            size_t* count = &binCursor[size_t(chunk) * bandCount];
+            uint64_t* count = &binCursor[size_t(chunk) * bandCount];
             double* area = &binArea[size_t(chunk) * bandCount];
             const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
             for (int i = chunk * chunkFaces; i < end; i++) {
@@ -338,20 +341,22 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     box.rowBegin = box.rowEnd = 0;
                     continue;
                 }
-                // In pixels, for estimating each band's overdraw.
-                const double faceArea =
-                    std::abs(double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
-                             double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
+                // In pixels, for estimating each band's overdraw; the sign gives the winding.
+                const double signedArea =
+                    (double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
+                     double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
                     (0.5 / double(kSubpixelOne * kSubpixelOne));
+                const double faceArea = std::abs(signedArea);
+                const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
                 const int firstBand = box.rowBegin >> bandShift;
                 if (firstBand == (box.rowEnd - 1) >> bandShift) {
-                    count[firstBand]++;  // the common case: within one band
+                    count[firstBand] += counted;  // the common case: within one band
                     area[firstBand] += faceArea;
                     continue;
                 }
                 const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
                 forEachBand(box, [&](int k) {
-                    count[k]++;
+                    count[k] += counted;
                     const int inBand = std::min(box.rowEnd, (k + 1) * bandRows) -
                                        std::max(box.rowBegin, k * bandRows);
                     area[k] += areaPerRow * inBand;
@@ -377,12 +382,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     // band's list in decreasing face order.
     std::vector<size_t> bandStart(bandCount + 1, 0);
     std::vector<double> bandArea(bandCount, 0.0);  // covered samples, counted with overdraw
+    std::vector<size_t> bandClockwise(bandCount, 0);
     for (int k = 0; k < bandCount; k++) {
         size_t next = bandStart[k];
         for (int c = chunkCount; c-- > 0;) {  // later chunks first: decreasing face order
-            const size_t count = binCursor[size_t(c) * bandCount + k];
+            const uint64_t counts = binCursor[size_t(c) * bandCount + k];
             binCursor[size_t(c) * bandCount + k] = next;
-            next += count;
+            next += counts & (kClockwiseOne - 1);
+            bandClockwise[k] += counts >> 32;
             bandArea[k] += binArea[size_t(c) * bandCount + k];
         }
         bandStart[k + 1] = next;
@@ -391,7 +398,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     binned.resize(bandStart[bandCount]);
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
-            size_t* cursor = &binCursor[size_t(c) * bandCount];
+            uint64_t* cursor = &binCursor[size_t(c) * bandCount];
             const int begin = c * chunkFaces;
             for (int i = std::min(faceCount, begin + chunkFaces); i-- > begin;) {
                 const uint64_t entry = bandEntry(quantizedKey(i), i);
@@ -421,6 +428,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
         // shade more than once (estimated from face areas) are fewer than this many per face:
         // rewriting a few pixels costs less than the mask's work on every span of small faces.
         constexpr double kOverdrawPerFaceBackToFront = 32;
+        // Also front to back: bands of small faces (at most this many samples each) wound both
+        // ways, at least a quarter of them each way. That is a closed surface seen with its back
+        // faces, which are hidden: the coverage test skips them whole, before any setup. (Big
+        // faces gain less: the mask's per-row work grows with them.)
+        constexpr double kSmallFaceSamples = 32;
         // Raw storage: the shaders have no default constructor and need none.
         alignas(BatchFace) unsigned char batchStorage[kBatch * sizeof(BatchFace)];
         BatchFace* const batch = reinterpret_cast<BatchFace*>(batchStorage);
@@ -464,7 +476,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             int batchFaces[kBatch];
 
             const double overdraw = bandArea[band] - double(y1 - y0) * width;
-            if (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize)) {
+            const size_t windingMinority =
+                std::min(bandClockwise[band], orderSize - bandClockwise[band]);
+            const bool closedSurface = 4 * windingMinority >= orderSize &&
+                                       bandArea[band] <= kSmallFaceSamples * double(orderSize);
+            if (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface) {
                 // Little overdraw: the painter's way is cheaper here. Background first, then
                 // every face back to front, overwriting; no coverage bookkeeping.
                 if (background)
