@@ -4,10 +4,11 @@
 //
 // The canvas is cut into bands of rows, rendered in parallel. Each band sorts its own faces and
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw
-// is painted back to front; one with more is built front to back, where a coverage bit mask keeps
-// the first (frontmost) write of each pixel: exactly what the painter's algorithm leaves visible,
-// with each pixel written once. Per face, only a depth, a row range and its bin entries are kept
-// between passes: setup happens in the band that draws the face.
+// is painted back to front; one with more (or with a closed surface's hidden back faces) is built
+// front to back, where a coverage bit mask keeps the first (frontmost) write of each pixel:
+// exactly what the painter's algorithm leaves visible, with each pixel written once, and a face
+// whose sample box is already final is skipped before setup. Per face, only a depth, a sample box
+// and its bin entries are kept between passes: setup happens in the band that draws the face.
 #ifndef OPENCV_SHADING_MESH_HPP
 #define OPENCV_SHADING_MESH_HPP
 
