@@ -470,7 +470,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     const Vec3i& f = corners[i];
                     const Vec3d* const c[3] = {&mesh.colors[f[0]], &mesh.colors[f[1]],
                                                &mesh.colors[f[2]]};
-                    new (&batch[prepared++]) BatchFace{triangle, Shader(triangle, vertexOrder, c), faces[i]};
+                    new (&batch[prepared++])
+                        BatchFace{triangle, Shader(triangle, vertexOrder, c), faces[i]};
                 }
                 return prepared;
             };
