@@ -7,6 +7,7 @@
 #define OPENCV_SHADING_RASTER_HPP
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/hal/intrin.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -154,7 +155,16 @@ struct TriangleSetup {
     int rowBegin, rowMid, rowEnd;  //!< clipped to [0, height]
     bool longEdgeLeft;             //!< the top-bottom edge bounds spans on the left
     bool narrow;                   //!< walkers may use 64-bit arithmetic (see EdgeWalker)
+    //! For a small triangle (see kSmallColumns), the first sample column of its box; else -1.
+    int smallFirstColumn;
 };
+
+/** Triangles at most this many sample columns wide and kSmallRows tall are walked by edge
+functions at all their columns at once (walkSmallTriangle): for the few rows of a small face,
+cheaper than starting three EdgeWalkers, each with its divisions. Within these extents every
+edge function value fits in 32 bits. */
+constexpr int kSmallColumns = 8;
+constexpr int kSmallRows = 16;
 
 //! ceil(v / 256), the first pixel row or column at or after fixed-point v, clamped to [0, limit].
 inline int ceilToPixel(int64_t fixed, int limit)
@@ -240,7 +250,63 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
     t.rowMid = ceilToPixel(p[1].y, size.height);
     t.rowEnd = ceilToPixel(p[2].y, size.height);
     t.longEdgeLeft = sign < 0;
+    // Extents below 8 and 16 pixels leave at most 8 sample columns and 16 rows.
+    t.smallFirstColumn = xMax - xMin < kSmallColumns * kSubpixelOne &&
+                                 p[2].y - p[0].y < kSmallRows * kSubpixelOne
+                             ? std::min(ceilToPixel(xMin, size.width), size.width - 1)
+                             : -1;
     return t.rowBegin < t.rowEnd;
+}
+
+/** walkTriangle for a small triangle (t.smallFirstColumn >= 0) over rows [begin, end): the
+same spans, found by testing the 8 samples of each row from the box's first column against the
+three edges.
+
+Edge a -> b (a above b) covers, as the EdgeWalker does, the samples right of or on it when it is
+a left edge (F >= 0, F(p) = (p - a) x (b - a) in subpixels) and those strictly left of it when
+it is a right edge (F < 0); each test is G = s F + bias > 0. Testing all three edges on every row
+equals walking the two active ones: within the rows between its ends an edge is active, and
+outside them the triangle's samples lie strictly inside its half-plane. The one exception, a
+horizontal edge, is never active and is left out (the row range bounds it). */
+template <typename SpanFn>
+inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int width,
+                              SpanFn&& spanFn)
+{
+    const int firstColumn = t.smallFirstColumn;
+    const int64_t ox = int64_t(firstColumn) * kSubpixelOne, oy = int64_t(begin) * kSubpixelOne;
+    struct EdgeTest {
+        v_int32x4 low, high, perRow;  // G at columns 0-3 and 4-7 of the row; its step per row
+    };
+    auto edgeTest = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
+        const int64_t dx = b.x - a.x, dy = b.y - a.y;
+        int32_t at0 = 1, perColumn = 0, perRow = 0;  // horizontal: always passes
+        if (dy != 0) {
+            const int64_t s = left ? 1 : -1;
+            at0 = int32_t(s * ((ox - a.x) * dy - (oy - a.y) * dx) + (left ? 1 : 0));
+            perColumn = int32_t(s * dy * kSubpixelOne);
+            perRow = int32_t(-s * dx * kSubpixelOne);
+        }
+        const v_int32x4 low(at0, at0 + perColumn, at0 + 2 * perColumn, at0 + 3 * perColumn);
+        return EdgeTest{low, low + v_setall_s32(4 * perColumn), v_setall_s32(perRow)};
+    };
+    const bool longLeft = t.longEdgeLeft;
+    EdgeTest e0 = edgeTest(t.top, t.bottom, longLeft);
+    EdgeTest e1 = edgeTest(t.top, t.mid, !longLeft);
+    EdgeTest e2 = edgeTest(t.mid, t.bottom, !longLeft);
+    // Columns at or past the canvas's right edge are not tested.
+    const unsigned onCanvas = (1u << std::min(kSmallColumns, width - firstColumn)) - 1;
+    const v_int32x4 zero = v_setzero_s32();
+    for (int row = begin; row < end; row++) {
+        const unsigned inside =
+            (unsigned(v_signmask((e0.low > zero) & (e1.low > zero) & (e2.low > zero))) |
+             unsigned(v_signmask((e0.high > zero) & (e1.high > zero) & (e2.high > zero))) << 4) &
+            onCanvas;
+        if (inside)  // a convex shape: the covered samples are contiguous
+            spanFn(row, firstColumn + __builtin_ctz(inside), firstColumn + 32 - __builtin_clz(inside));
+        e0.low += e0.perRow, e0.high += e0.perRow;
+        e1.low += e1.perRow, e1.high += e1.perRow;
+        e2.low += e2.perRow, e2.high += e2.perRow;
+    }
 }
 
 /** Calls spanFn(row, xBegin, xEnd) for every non-empty span of t within rows
@@ -254,6 +320,10 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
     const int end = std::min(t.rowEnd, rowLast);
     if (begin >= end)
         return;
+    if (t.smallFirstColumn >= 0) {
+        walkSmallTriangle(t, begin, end, width, spanFn);
+        return;
+    }
     EdgeWalker longEdge, shortEdge;
     longEdge.start(t.top, t.bottom, begin, t.narrow);
     int restartRow = end;  // where the lower short edge takes over, if within [begin, end)
