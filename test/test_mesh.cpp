@@ -302,6 +302,74 @@ TEST(ShadingMesh, AllInputFormsAgree)
             }
 }
 
+// Inputs above 32768 values are converted in parallel slices: every form, continuous or not, one
+// row or many, gives the image that the same mesh drawn in small pieces gives.
+TEST(ShadingMesh, LargeInputFormsAgree)
+{
+    const Size size(190, 110);
+    std::vector<Point2d> verts;
+    std::vector<Vec3i> faces;
+    makeGridMesh(size, 140, false, 31, verts, faces);  // 19,881 vertices, 39,200 faces
+    for (Point2d& p : verts)  // quarter pixels: exact as float too
+        p = Point2d(std::round(p.x * 4) / 4, std::round(p.y * 4) / 4);
+    const std::vector<Vec3f> colors = randomColors(verts.size(), 32);
+    RNG rng(33);
+    std::vector<double> depth(verts.size());
+    for (double& d : depth)
+        d = rng.uniform(0.0, 8.0);
+
+    // The expectation: pieces of faces by mean depth, far to near (the painter's order), each with
+    // its own vertices, all few enough to be converted at once.
+    std::vector<double> mean(faces.size());
+    for (size_t i = 0; i < faces.size(); i++)
+        mean[i] = (depth[faces[i][0]] + depth[faces[i][1]] + depth[faces[i][2]]) / 3.0;
+    Mat expected(size, CV_32FC3, Scalar::all(1.0));
+    for (int bin = 63; bin >= 0; bin--) {
+        std::vector<Point2d> pieceVerts;
+        std::vector<Vec3f> pieceColors;
+        std::vector<double> pieceDepth;
+        std::vector<Vec3i> pieceFaces;
+        for (size_t i = 0; i < faces.size(); i++) {
+            if (mean[i] < bin / 8.0 || mean[i] >= (bin + 1) / 8.0)
+                continue;
+            Vec3i f;
+            for (int k = 0; k < 3; k++) {  // a copy of each corner: depths stay the same
+                f[k] = int(pieceVerts.size());
+                pieceVerts.push_back(verts[faces[i][k]]);
+                pieceColors.push_back(colors[faces[i][k]]);
+                pieceDepth.push_back(depth[faces[i][k]]);
+            }
+            pieceFaces.push_back(f);
+        }
+        ASSERT_LE(pieceColors.size() * 3, size_t(32768));
+        shading::drawMesh(expected, pieceVerts, pieceFaces, pieceColors, pieceDepth,
+                          shading::SHADE_GOURAUD);
+    }
+
+    Mat vertsWide(int(verts.size()), 4, CV_64F);  // its left half is not continuous
+    Mat(verts).reshape(1).copyTo(vertsWide.colRange(0, 2));
+    const Mat vertsStrided = vertsWide.colRange(0, 2);
+    const Mat vertsRow = Mat(verts).reshape(2, 1).clone();  // 1 x N, two channels
+    Mat vertsFloat, colorsDouble, facesDouble;
+    Mat(verts).reshape(1).convertTo(vertsFloat, CV_32F);
+    Mat(colors).reshape(1).convertTo(colorsDouble, CV_64F);
+    Mat(faces).reshape(1).convertTo(facesDouble, CV_64F);
+    const Mat depthRow = Mat(depth).reshape(1, 1).clone();
+
+    const std::vector<_InputArray> vertForms = {_InputArray(verts), _InputArray(vertsFloat),
+                                                _InputArray(vertsStrided),
+                                                _InputArray(vertsRow)};
+    for (size_t i = 0; i < vertForms.size(); i++)
+        for (int j = 0; j < 2; j++) {
+            Mat img;
+            shading::render(vertForms[i], j ? _InputArray(facesDouble) : _InputArray(faces),
+                            j ? _InputArray(colorsDouble) : _InputArray(colors),
+                            j ? _InputArray(depthRow) : _InputArray(depth), img,
+                            shading::SHADE_GOURAUD, size, Scalar::all(1.0));
+            EXPECT_EQ(maxAbsDiff(img, expected), 0.0) << "vertex form " << i << ", other forms " << j;
+        }
+}
+
 // Many callers at once, each into its own canvas (while the library also runs its own parallel
 // loops): every result equals the one computed alone.
 TEST(ShadingMesh, ConcurrentCallsIntoSeparateCanvases)

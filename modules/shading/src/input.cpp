@@ -1,9 +1,11 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 #include "input.hpp"
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/shading.hpp>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <string>
 
@@ -43,11 +45,42 @@ static int countRows(const Mat& m, const char* argName, int dims, int expectedCo
     return count;
 }
 
+//! Values per parallel slice: smaller inputs are converted at once.
+constexpr int kConversionSlice = 1 << 15;
+
+void PendingConversions::add(const Mat& src, Mat& dst)
+{
+    if (!src.isContinuous() || src.total() * src.channels() <= size_t(kConversionSlice) ||
+        src.total() * src.channels() > size_t(INT_MAX)) {
+        src.convertTo(dst, dst.depth());  // dst has the right size and type: no reallocation
+        return;
+    }
+    jobs_.emplace_back(src.reshape(1, 1), dst.reshape(1, 1));
+}
+
+void PendingConversions::run()
+{
+    std::vector<std::pair<int, int>> slices;  // (job, first value)
+    for (size_t j = 0; j < jobs_.size(); j++)
+        for (int v = 0; v < jobs_[j].first.cols; v += kConversionSlice)
+            slices.emplace_back(int(j), v);
+    parallel_for_(Range(0, int(slices.size())), [&](const Range& r) {
+        for (int i = r.start; i < r.end; i++) {
+            const std::pair<Mat, Mat>& job = jobs_[slices[i].first];
+            const int begin = slices[i].second;
+            const int end = std::min(begin + kConversionSlice, job.first.cols);
+            Mat dst = job.second.colRange(begin, end);
+            job.first.colRange(begin, end).convertTo(dst, dst.depth());
+        }
+    });
+    jobs_.clear();
+}
+
 /** Reads `arr` as items of type T (Point2d, Vec3d, Vec3i, double) into `items`, converting
-straight into its memory. */
+straight into its memory (now, or in pending->run()). */
 template <typename T>
 static void readItems(InputArray arr, const char* argName, int expectedCount,
-                      std::vector<T>& items)
+                      std::vector<T>& items, PendingConversions* pending = nullptr)
 {
     using Info = DataType<T>;
     static_assert(sizeof(T) == sizeof(typename Info::channel_type) * Info::channels,
@@ -56,25 +89,35 @@ static void readItems(InputArray arr, const char* argName, int expectedCount,
     items.resize(size_t(countRows(m, argName, Info::channels, expectedCount)));
     if (!items.empty()) {
         Mat dst(m.rows, m.cols, CV_MAKETYPE(traits::Depth<T>::value, m.channels()), items.data());
-        m.convertTo(dst, traits::Depth<T>::value);  // dst has the right size and type: no reallocation
+        if (pending)
+            pending->add(m, dst);
+        else
+            m.convertTo(dst, traits::Depth<T>::value);  // the right size and type: no reallocation
     }
 }
 
-void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out)
+void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out,
+                PendingConversions* pending)
 {
-    readItems(arr, argName, expectedCount, out);
+    readItems(arr, argName, expectedCount, out, pending);
 }
 
-void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out)
+void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
+                PendingConversions* pending)
 {
-    readItems(arr, argName, expectedCount, out);
+    readItems(arr, argName, expectedCount, out, pending);
 }
 
-void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces)
+void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces,
+               PendingConversions* pending)
 {
     if (arr.depth() == CV_32S) {
-        readItems(arr, argName, -1, faces);
+        readItems(arr, argName, -1, faces, pending);
+        if (pending)
+            pending->run();
     } else {
+        if (pending)
+            pending->run();
         std::vector<Vec3d> values;
         readItems(arr, argName, -1, values);
         faces.resize(values.size());
@@ -110,12 +153,13 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
                                     "count)", argName, i, faces[i][k], vertexCount));
 }
 
-void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out)
+void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
+                PendingConversions* pending)
 {
     if (arr.empty())
         out.clear();
     else
-        readItems(arr, argName, expectedCount, out);
+        readItems(arr, argName, expectedCount, out, pending);
 }
 
 void checkCanvas(InputOutputArray canvas, const char* argName)

@@ -7,21 +7,40 @@
 
 #include <opencv2/core.hpp>
 
+#include <utility>
 #include <vector>
 
 namespace cv {
 namespace shading {
 namespace detail {
 
+/** Conversions of large inputs, collected by the readers and then run together, in slices, in
+parallel: a mesh's four arrays are copied in a fraction of the time one thread takes. */
+class PendingConversions {
+public:
+    //! Converts src into dst (same size and channels, dst's depth) now or in run().
+    void add(const Mat& src, Mat& dst);
+    void run();
+
+private:
+    std::vector<std::pair<Mat, Mat>> jobs_;  //!< flattened to single rows of values
+};
+
 // Each reader accepts rows of CV_32F/CV_64F/CV_32S values (see the public header for the forms)
 // and fills `out` (reusing its capacity). `expectedCount` < 0 accepts any count. Errors name
-// `argName` and say what was expected and given.
-void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out);
-void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out);
-//! Faces as zero-based index triples, each checked against [0, vertexCount).
-void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& out);
+// `argName` and say what was expected and given. With `pending`, the values may arrive only when
+// pending->run() returns.
+void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out,
+                PendingConversions* pending = nullptr);
+void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
+                PendingConversions* pending = nullptr);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
-void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out);
+void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
+                PendingConversions* pending = nullptr);
+/** Faces as zero-based index triples, each checked against [0, vertexCount). With `pending`,
+runs it (the other readers' conversions too) before checking: call it last. */
+void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& out,
+               PendingConversions* pending = nullptr);
 
 //! Checks that `canvas` is a non-empty CV_32FC3 or CV_8UC3 image.
 void checkCanvas(InputOutputArray canvas, const char* argName);

@@ -67,11 +67,12 @@ MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inp
 {
     checkShadeType(shadeType);
     thread_local MeshData mesh;
-    readPoints(verts2d, "verts2d", -1, mesh.vertices);
+    PendingConversions pending;
+    readPoints(verts2d, "verts2d", -1, mesh.vertices, &pending);
     const int count = int(mesh.vertices.size());
-    readFaces(faces, "faces", count, mesh.faces);
-    readColors(vcolors, "vcolors", count, mesh.colors);
-    readDepths(depth, "depth", count, mesh.depth);
+    readColors(vcolors, "vcolors", count, mesh.colors, &pending);
+    readDepths(depth, "depth", count, mesh.depth, &pending);
+    readFaces(faces, "faces", count, mesh.faces, &pending);  // last: runs the conversions
     return mesh;
 }
 
