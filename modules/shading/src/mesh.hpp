@@ -143,25 +143,41 @@ public:
 
     /** Bit r - rowBegin is set when pixels [colFirst, colLast] of row r are all final, for r in
     [rowBegin, rowEnd) (at most 32 rows): a face whose box lies within such rows adds nothing
-    there. An occlusion test per face, far cheaper than walking it. */
+    there. An occlusion test per face, far cheaper than walking it. With kUntilOpenRow, stops at
+    the first row that is not final (enough to tell whether any is open). */
+    template <bool kUntilOpenRow = false>
     uint32_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast) const
     {
         const int first = colFirst >> 6, last = colLast >> 6;
         const uint64_t firstMask = ~uint64_t(0) << (colFirst & 63);
         const uint64_t lastMask = ~uint64_t(0) >> (63 - (colLast & 63));
         const uint64_t* words = bits_.data() + size_t(rowBegin) * wordsPerRow_;
+        const uint64_t all = ~uint64_t(0);
         uint32_t result = 0;
-        for (int r = 0; r < rowEnd - rowBegin; r++, words += wordsPerRow_) {
-            // Bits outside the box are counted as final.
-            uint64_t all;
-            if (first == last) {
-                all = words[first] | ~(firstMask & lastMask);
-            } else {
-                all = (words[first] | ~firstMask) & (words[last] | ~lastMask);
-                for (int w = first + 1; w < last && all == ~uint64_t(0); w++)
-                    all &= words[w];
+        // One loop per box shape, so the rows' loop has no branch but its own.
+        auto scan = [&](auto&& rowFinal) {
+            for (int r = 0; r < rowEnd - rowBegin; r++, words += wordsPerRow_) {
+                const bool final = rowFinal(words);
+                result |= uint32_t(final) << r;
+                if (kUntilOpenRow && !final)
+                    break;
             }
-            result |= uint32_t(all == ~uint64_t(0)) << r;
+        };
+        // Bits outside the box are counted as final.
+        if (first == last) {
+            const uint64_t outside = ~(firstMask & lastMask);
+            scan([&](const uint64_t* w) { return (w[first] | outside) == all; });
+        } else if (last == first + 1) {
+            scan([&](const uint64_t* w) {
+                return ((w[first] | ~firstMask) & (w[last] | ~lastMask)) == all;
+            });
+        } else {
+            scan([&](const uint64_t* w) {
+                uint64_t final = (w[first] | ~firstMask) & (w[last] | ~lastMask);
+                for (int i = first + 1; i < last && final == all; i++)
+                    final &= w[i];
+                return final == all;
+            });
         }
         return result;
     }
@@ -511,27 +527,29 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
             // The rows of `box` within the band, as bits from y0; those whose part of the box
-            // is final already leave `visible`.
-            auto visibleRows = [&](const SampleBox& box, uint32_t& visible) {
+            // is final already leave `visible`. kAny: only whether some row is left matters.
+            auto visibleRows = [&](const SampleBox& box, uint32_t& visible, auto kAny) {
                 const int r0 = std::max(box.rowBegin, y0) - y0, r1 = std::min(box.rowEnd, y1) - y0;
                 visible = uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows;
                 if (visible)
-                    visible &= ~(coverage.finalRows(r0, r1, box.colFirst, box.colLast) << r0);
+                    visible &= ~(coverage.finalRows<decltype(kAny)::value>(
+                                     r0, r1, box.colFirst, box.colLast)
+                                 << r0);
                 return visible != 0;
             };
             for (size_t next = 0; next < orderSize && fullRows != allRows;) {
                 int count = 0;
                 for (; next < orderSize && count < kBatch; next++) {
                     const int face = entryFace(order[next]);
-                    uint32_t rowsToDraw;
-                    if (visibleRows(boxes[face], rowsToDraw))  // else skipped unread
+                    uint32_t anyRows;
+                    if (visibleRows(boxes[face], anyRows, std::true_type()))  // else skipped unread
                         batchFaces[count++] = face;
                 }
                 const int batchSize = prepareBatch(batchFaces, count);
                 for (int i = 0; i < batchSize; i++) {
                     const BatchFace& bf = batch[i];
                     uint32_t rowsToDraw;
-                    if (!visibleRows(boxes[bf.face], rowsToDraw))  // hidden by earlier faces
+                    if (!visibleRows(boxes[bf.face], rowsToDraw, std::false_type()))  // hidden now
                         continue;
                     const int firstRow = y0 + __builtin_ctz(rowsToDraw);
                     const int lastRow = y0 + 31 - __builtin_clz(rowsToDraw);
