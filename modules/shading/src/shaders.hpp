@@ -151,12 +151,26 @@ struct GouraudShader {
                 edgeDy[i] = (b.x - a.x) * kSubpixelOne;
             }
         }
+#if CV_SIMD128 && CV_SIMD128_64F
+        // Two channels at a time; a NaN fails the comparison too.
+        const v_float64x2 limit = v_setall_f64(1e37);
+        v_float64x2 inRange = v_setall_f64(0.0) == v_setall_f64(0.0);
+        for (int i = 0; i < 3; i++) {
+            const v_float64x2 low = v_load(c[order[i]]->val);
+            const v_float64x2 high = v_setall_f64((*c[order[i]])[2]);
+            v_store(color[i], low);
+            color[i][2] = (*c[order[i]])[2];
+            inRange = inRange & (v_abs(low) <= limit) & (v_abs(high) <= limit);
+        }
+        perPixel = !v_check_all(inRange);
+#else
         perPixel = false;
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < 3; k++) {
                 color[i][k] = (*c[order[i]])[k];
                 perPixel |= !(std::abs(color[i][k]) <= 1e37);
             }
+#endif
         invArea2 = 1.0 / edgeValue(p[0], p[1], p[2], t.narrow);
         // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
         const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,
