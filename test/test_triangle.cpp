@@ -277,3 +277,24 @@ TEST(ShadingTriangle, GouraudHugeColoursNeverNaN)
     EXPECT_NEAR(canvas.at<Vec3f>(16, 10)[1], -3.2085e38, 1e34);
     EXPECT_EQ(canvas.at<Vec3f>(16, 10)[0], -4.f);
 }
+
+// The same huge colour in each channel in turn, and at each vertex: the per-pixel path is taken
+// whichever of the nine values is out of range.
+TEST(ShadingTriangle, GouraudHugeColourInAnyChannelNeverNaN)
+{
+    const std::vector<Point2d> verts = {{2.7863571129009264e-313, 22}, {14, -3}, {10, 16.5}};
+    for (int vertex = 0; vertex < 3; vertex++)
+        for (int k = 0; k < 3; k++) {
+            std::vector<Vec3d> colors(3, Vec3d(-4, -4, -4));
+            colors[vertex][k] = -2.7753559049153819e+40;
+            Mat canvas(24, 16, CV_32FC3, Scalar::all(0));
+            shading::gouraud(canvas, verts, colors);
+            for (int y = 0; y < canvas.rows; y++)
+                for (int x = 0; x < canvas.cols; x++)
+                    ASSERT_FALSE(std::isnan(canvas.at<Vec3f>(y, x)[k]))
+                        << "vertex " << vertex << ", channel " << k << " at " << x << "," << y;
+            if (vertex == 0) {  // worked out above: weight 0.0115607 at (10, 16)
+                EXPECT_NEAR(canvas.at<Vec3f>(16, 10)[k], -3.2085e38, 1e34) << k;
+            }
+        }
+}
