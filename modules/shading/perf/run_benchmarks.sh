@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the benchmarks (Release, -DOPENCV_SHADING_BUILD_PERF=ON) in build-perf/, runs them
-# (medians of 5 repetitions, interleaved at random, JSON into build-perf/results/), then prints the Markdown report and
+# (medians of 9 repetitions, interleaved at random, JSON into build-perf/results/), then prints the Markdown report and
 # writes the plots to docs/perf/ (report.py). llvmpipe runs in the same program when OSMesa was
-# found (libosmesa6-dev). Takes about ten minutes on 2 cores.
+# found (libosmesa6-dev). Takes about eight minutes on 2 cores.
 #
 # usage: modules/shading/perf/run_benchmarks.sh [Google Benchmark flags, e.g.
 #        --benchmark_filter=512 --benchmark_repetitions=3]
@@ -20,7 +20,7 @@ cmake --build "$build" -j"${JOBS:-$(nproc)}"
 mkdir -p "$results"
 rm -f "$results"/*.json
 # Repetitions interleaved at random: slow drifts of a shared machine hit every method alike.
-"$build/modules/shading/perf/opencv_shading_perf" --benchmark_repetitions=5 \
+"$build/modules/shading/perf/opencv_shading_perf" --benchmark_repetitions=9 \
   --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
   --benchmark_out_format=json --benchmark_out="$results/opencv_shading_perf.json" "$@"
 
