@@ -481,7 +481,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                 for (int i = 0; i < count; i++) {
                     TriangleSetup triangle;
                     int vertexOrder[3];
-                    if (!setupTriangle(points[i], size, triangle, vertexOrder))
+                    if (!setupTriangle<true>(points[i], size, triangle, vertexOrder))
                         continue;
                     const Vec3i& f = corners[i];
                     const Vec3d* const c[3] = {&mesh.colors[f[0]], &mesh.colors[f[1]],

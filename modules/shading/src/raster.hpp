@@ -207,10 +207,13 @@ inline bool triangleBox(const FixedPoint p[3], Size size, SampleBox& box)
 /** Sets up the triangle with snapped vertices `in` for a target of `size` pixels. Returns false
 when it covers no sample of the target: an invalid vertex, zero area, or no overlap. `order`
 receives the input indices of top, middle and bottom vertex (sorted by y, then x): a canonical
-order, so everything derived from it is independent of the order the vertices were given in. */
+order, so everything derived from it is independent of the order the vertices were given in.
+kBoxChecked: triangleBox() accepted the triangle for this size, so its vertices are valid and it
+overlaps the target's columns (a mesh's faces, checked once when binned). */
+template <bool kBoxChecked = false>
 inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, int order[3])
 {
-    if (!isValid(in))
+    if (!kBoxChecked && !isValid(in))
         return false;
     FixedPoint p[3] = {in[0], in[1], in[2]};
     order[0] = 0, order[1] = 1, order[2] = 2;
@@ -225,7 +228,7 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
     sortPair(0, 1);
     const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
     const int64_t xMax = std::max({p[0].x, p[1].x, p[2].x});
-    if (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne)
+    if (!kBoxChecked && (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne))
         return false;
     const int64_t extent = std::max({xMax, -xMin, p[2].y, -p[0].y});
     const int64_t canvasExtent = int64_t(std::max(size.width, size.height)) * kSubpixelOne;
