@@ -366,7 +366,8 @@ TEST(ShadingMesh, LargeInputFormsAgree)
                             j ? _InputArray(colorsDouble) : _InputArray(colors),
                             j ? _InputArray(depthRow) : _InputArray(depth), img,
                             shading::SHADE_GOURAUD, size, Scalar::all(1.0));
-            EXPECT_EQ(maxAbsDiff(img, expected), 0.0) << "vertex form " << i << ", other forms " << j;
+            EXPECT_EQ(maxAbsDiff(img, expected), 0.0)
+                << "vertex form " << i << ", other forms " << j;
         }
 }
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the benchmarks (Release, -DOPENCV_SHADING_BUILD_PERF=ON) in build-perf/, runs them
-# (medians of 9 repetitions, interleaved at random, JSON into build-perf/results/), then prints the Markdown report and
-# writes the plots to docs/perf/ (report.py). llvmpipe runs in the same program when OSMesa was
-# found (libosmesa6-dev). Takes about eight minutes on 2 cores.
+# (medians of 9 repetitions, interleaved at random, JSON into build-perf/results/), then prints
+# the Markdown report and writes the plots to docs/perf/ (report.py). llvmpipe runs in the same
+# program when OSMesa was found (libosmesa6-dev). Takes about eight minutes on 2 cores.
 #
 # usage: modules/shading/perf/run_benchmarks.sh [Google Benchmark flags, e.g.
 #        --benchmark_filter=512 --benchmark_repetitions=3]

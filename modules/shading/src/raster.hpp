@@ -175,6 +175,12 @@ inline int ceilToPixel(int64_t fixed, int limit)
     return int(std::min<int64_t>(std::max<int64_t>(pixel, 0), limit));
 }
 
+//! The first sample column at or right of fixed-point x, clamped to the target's columns.
+inline int firstColumnAt(int64_t xMin, int width)
+{
+    return std::min(ceilToPixel(xMin, width), width - 1);
+}
+
 inline bool above(const FixedPoint& a, const FixedPoint& b)
 {
     return a.y < b.y || (a.y == b.y && a.x < b.x);
@@ -199,7 +205,7 @@ inline bool triangleBox(const FixedPoint p[3], Size size, SampleBox& box)
     box.rowBegin = ceilToPixel(std::min({p[0].y, p[1].y, p[2].y}), size.height);
     box.rowEnd = ceilToPixel(std::max({p[0].y, p[1].y, p[2].y}), size.height);
     // Samples x with xMin <= 256 x <= xMax; clamping keeps a superset, which is all a box needs.
-    box.colFirst = std::min(ceilToPixel(xMin, size.width), size.width - 1);
+    box.colFirst = firstColumnAt(xMin, size.width);
     box.colLast = int(std::min<int64_t>(xMax >> kSubpixelBits, size.width - 1));
     return box.rowBegin < box.rowEnd && box.colFirst <= box.colLast;
 }
@@ -254,10 +260,9 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
     t.rowEnd = ceilToPixel(p[2].y, size.height);
     t.longEdgeLeft = sign < 0;
     // Extents below 8 and 16 pixels leave at most 8 sample columns and 16 rows.
-    t.smallFirstColumn = xMax - xMin < kSmallColumns * kSubpixelOne &&
-                                 p[2].y - p[0].y < kSmallRows * kSubpixelOne
-                             ? std::min(ceilToPixel(xMin, size.width), size.width - 1)
-                             : -1;
+    const bool small = xMax - xMin < kSmallColumns * kSubpixelOne &&
+                       p[2].y - p[0].y < kSmallRows * kSubpixelOne;
+    t.smallFirstColumn = small ? firstColumnAt(xMin, size.width) : -1;
     return t.rowBegin < t.rowEnd;
 }
 
@@ -304,8 +309,10 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
             (unsigned(v_signmask((e0.low > zero) & (e1.low > zero) & (e2.low > zero))) |
              unsigned(v_signmask((e0.high > zero) & (e1.high > zero) & (e2.high > zero))) << 4) &
             onCanvas;
-        if (inside)  // a convex shape: the covered samples are contiguous
-            spanFn(row, firstColumn + __builtin_ctz(inside), firstColumn + 32 - __builtin_clz(inside));
+        if (inside) {  // a convex shape: the covered samples are contiguous
+            spanFn(row, firstColumn + __builtin_ctz(inside),
+                   firstColumn + 32 - __builtin_clz(inside));
+        }
         e0.low += e0.perRow, e0.high += e0.perRow;
         e1.low += e1.perRow, e1.high += e1.perRow;
         e2.low += e2.perRow, e2.high += e2.perRow;
