@@ -182,9 +182,8 @@ public:
         return result;
     }
 
-    /** Marks [xBegin, xEnd) of `row` final and calls run(a, b) for every maximal run [a, b) of it
-    that was not final before (split at 64-pixel word boundaries). Returns the pixels newly
-    marked. */
+    /** Marks [xBegin, xEnd) of `row` final and calls run(a, b), left to right, for every maximal
+    run [a, b) of it that was not final before. Returns the pixels newly marked. */
     template <typename RunFn>
     int claim(int row, int xBegin, int xEnd, RunFn&& run)
     {
@@ -210,6 +209,7 @@ private:
     __attribute__((noinline)) static int claimRuns(uint64_t* words, int xBegin, int xEnd, RunFn& run)
     {
         int claimed = 0;
+        int runBegin = 0, runEnd = -1;  // the run found last, held back: the next may extend it
         for (int x = xBegin; x < xEnd;) {
             const int word = x >> 6, first = x & 63;
             const int count = std::min(xEnd - x, 64 - first);
@@ -220,12 +220,20 @@ private:
                 const int a = ctz(fresh);
                 const uint64_t rest = ~(fresh >> a);  // zero bits mark the run
                 const int len = rest == 0 ? 64 - a : ctz(rest);
-                run(word * 64 + a, word * 64 + a + len);
+                const int begin = word * 64 + a;
+                if (begin != runEnd) {  // not a continuation across the word boundary
+                    if (runEnd >= 0)
+                        run(runBegin, runEnd);
+                    runBegin = begin;
+                }
+                runEnd = begin + len;
                 claimed += len;
                 fresh &= len + a >= 64 ? 0 : ~uint64_t(0) << (a + len);
             }
             x += count;
         }
+        if (runEnd >= 0)
+            run(runBegin, runEnd);
         return claimed;
     }
 
