@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/shading.hpp>
 
+#include <climits>
 #include <functional>
 #include <string>
 
@@ -107,6 +108,32 @@ TEST(ShadingErrors, MeshFunctionsRejectBadArguments)
         expectRejected(bad, Mat(10, 10, CV_32FC3, Scalar::all(-1)));
         expectRejected(bad, Mat(10, 10, CV_8UC3, Scalar::all(7)));
     }
+}
+
+// The index check is vectorized: a bad index must be found in any lane, in the loop and in its
+// tail, whatever its value, and with no vertices at all.
+TEST(ShadingErrors, BadIndexFoundAnywhereInALongFaceList)
+{
+    const int faceCount = 37;  // 111 indices: SIMD blocks of 8 and a tail of 7
+    std::vector<Vec3i> faces(faceCount);
+    for (int i = 0; i < faceCount; i++)
+        faces[i] = Vec3i(i % 4, (i + 1) % 4, (i + 2) % 4);
+    for (int bad : {-1, 4, INT_MIN, INT_MAX, 1 << 30}) {
+        for (int at = 0; at < 3 * faceCount; at++) {
+            std::vector<Vec3i> f = faces;
+            f[at / 3][at % 3] = bad;
+            const std::string face = "face " + std::to_string(at / 3) + " ";
+            expectRejected({"bad index", [&](Mat& c) {
+                                shading::drawMesh(c, kVerts, f, kMeshColors, kDepth);
+                            }, {"faces", face, std::to_string(bad), "[0, 4)"}},
+                           Mat(10, 10, CV_32FC3, Scalar::all(-1)));
+        }
+    }
+    expectRejected({"no vertices", [&](Mat& c) {
+                        shading::drawMesh(c, std::vector<Point2f>(), faces, std::vector<Vec3f>(),
+                                          std::vector<float>());
+                    }, {"faces", "face 0 ", "[0, 0)"}},
+                   Mat(10, 10, CV_32FC3, Scalar::all(-1)));
 }
 
 TEST(ShadingErrors, RenderRejectsBadArgumentsAndLeavesOutputAlone)

@@ -1,6 +1,7 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 #include "input.hpp"
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/shading.hpp>
 
@@ -76,6 +77,31 @@ void PendingConversions::run()
     jobs_.clear();
 }
 
+/** Whether any of indices[0 .. n) lies outside [0, vertexCount): one unsigned comparison per
+index (a negative one wraps above any count), SIMD without a loop-carried min/max, which SSE2
+lacks for 32-bit integers. */
+static bool anyIndexOutside(const int* indices, size_t n, int vertexCount)
+{
+    if (vertexCount <= 0)
+        return n > 0;
+    size_t i = 0;
+    bool outside = false;
+#if CV_SIMD128
+    // Unsigned a >= b as signed (a ^ sign) > (b - 1) ^ sign: SSE2 compares signed only.
+    const v_int32x4 sign = v_setall_s32(INT_MIN);
+    const v_int32x4 last = v_setall_s32(int(unsigned(vertexCount - 1) ^ 0x80000000u));
+    v_int32x4 above0 = v_setzero_s32(), above1 = v_setzero_s32();
+    for (; i + 8 <= n; i += 8) {
+        above0 = above0 | ((v_load(indices + i) ^ sign) > last);
+        above1 = above1 | ((v_load(indices + i + 4) ^ sign) > last);
+    }
+    outside = v_check_any(above0 | above1);
+#endif
+    for (; i < n; i++)
+        outside |= unsigned(indices[i]) >= unsigned(vertexCount);
+    return outside;
+}
+
 /** Reads `arr` as items of type T (Point2d, Vec3d, Vec3i, double) into `items`, converting
 straight into its memory (now, or in pending->run()). */
 template <typename T>
@@ -134,17 +160,7 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
                 faces[i][k] = int(index);
             }
     }
-    // One vectorizable pass for the range; the error path finds the first bad index.
-    const int* indices = faces.empty() ? nullptr : &faces[0][0];
-    int lowest = 0, highest = 0;
-    if (indices) {
-        lowest = highest = indices[0];
-        for (size_t i = 1; i < 3 * faces.size(); i++) {
-            lowest = std::min(lowest, indices[i]);
-            highest = std::max(highest, indices[i]);
-        }
-    }
-    if (lowest < 0 || highest >= vertexCount)
+    if (anyIndexOutside(faces.empty() ? nullptr : &faces[0][0], 3 * faces.size(), vertexCount))
         for (size_t i = 0; i < faces.size(); i++)
             for (int k = 0; k < 3; k++)
                 if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
