@@ -141,32 +141,35 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
         readItems(arr, argName, -1, faces, pending);
         if (pending)
             pending->run();
-    } else {
-        if (pending)
-            pending->run();
-        std::vector<Vec3d> values;
-        readItems(arr, argName, -1, values);
-        faces.resize(values.size());
-        for (size_t i = 0; i < values.size(); i++)
-            for (int k = 0; k < 3; k++) {
-                const double index = values[i][k];
-                if (!(index >= 0 && index < vertexCount))
-                    CV_Error(Error::StsOutOfRange,
-                             format("%s: face %zu has index %g, outside [0, %d) (the vertex "
-                                    "count)", argName, i, index, vertexCount));
-                if (index != std::floor(index))
-                    CV_Error(Error::StsBadArg, format("%s: face %zu has non-integer index %g",
-                                                      argName, i, index));
-                faces[i][k] = int(index);
-            }
+        // One SIMD pass; the error path finds the first bad index.
+        if (anyIndexOutside(faces.empty() ? nullptr : &faces[0][0], 3 * faces.size(),
+                            vertexCount))
+            for (size_t i = 0; i < faces.size(); i++)
+                for (int k = 0; k < 3; k++)
+                    if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
+                        CV_Error(Error::StsOutOfRange,
+                                 format("%s: face %zu has index %d, outside [0, %d) (the vertex "
+                                        "count)", argName, i, faces[i][k], vertexCount));
+        return;
     }
-    if (anyIndexOutside(faces.empty() ? nullptr : &faces[0][0], 3 * faces.size(), vertexCount))
-        for (size_t i = 0; i < faces.size(); i++)
-            for (int k = 0; k < 3; k++)
-                if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
-                    CV_Error(Error::StsOutOfRange,
-                             format("%s: face %zu has index %d, outside [0, %d) (the vertex "
-                                    "count)", argName, i, faces[i][k], vertexCount));
+    // Floating-point indices: each is checked (range, then integrality) as it is converted.
+    if (pending)
+        pending->run();
+    std::vector<Vec3d> values;
+    readItems(arr, argName, -1, values);
+    faces.resize(values.size());
+    for (size_t i = 0; i < values.size(); i++)
+        for (int k = 0; k < 3; k++) {
+            const double index = values[i][k];
+            if (!(index >= 0 && index < vertexCount))
+                CV_Error(Error::StsOutOfRange,
+                         format("%s: face %zu has index %g, outside [0, %d) (the vertex count)",
+                                argName, i, index, vertexCount));
+            if (index != std::floor(index))
+                CV_Error(Error::StsBadArg,
+                         format("%s: face %zu has non-integer index %g", argName, i, index));
+            faces[i][k] = int(index);
+        }
 }
 
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
