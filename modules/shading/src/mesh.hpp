@@ -117,7 +117,14 @@ inline void refineEqualKeys(uint64_t* items, size_t n, const double* exactKeys,
         size_t end = begin + 1;
         while (end < n && (items[end] >> 32) == (items[begin] >> 32))
             end++;
-        if (end - begin > 1) {
+        if (end - begin == 2) {  // the common case: two faces share a key
+            const uint64_t a = items[begin], b = items[begin + 1];
+            const double ka = exactKeys[entryFace(a)], kb = exactKeys[entryFace(b)];
+            if (kb < ka || (kb == ka && entryFace(b) > entryFace(a))) {
+                items[begin] = b;
+                items[begin + 1] = a;
+            }
+        } else if (end - begin > 2) {
             run.clear();
             for (size_t i = begin; i < end; i++)
                 run.emplace_back(exactKeys[entryFace(items[i])], items[i]);
