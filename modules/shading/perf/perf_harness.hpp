@@ -17,6 +17,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -81,6 +82,32 @@ inline void addBenchmark(const std::string& method, const Scene& sc, const char*
         }
         state.counters["triangles"] = triangles;
         state.counters["pixels"] = pixels;
+    })->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+/** Registers machine/arithmetic/threads:N: a fixed amount of pure integer arithmetic (no memory
+traffic) in 16 parts over cv::parallel_for_, with `threads` threads. Interleaved with the other
+benchmarks, its speed-up from 1 to N threads tells how much of the extra cores the run got: on a
+shared machine a core can be busy elsewhere for seconds, slowing every multi-threaded method. */
+inline void addArithmeticBenchmark(int threads)
+{
+    const std::string name = "machine/arithmetic/threads:" + std::to_string(threads);
+    benchmark::RegisterBenchmark(name.c_str(), [threads](benchmark::State& state) {
+        ThreadCount scope(threads);
+        for (auto _ : state) {
+            cv::parallel_for_(cv::Range(0, 16), [](const cv::Range& parts) {
+                for (int part = parts.start; part < parts.end; part++) {
+                    uint64_t a = uint64_t(part), b = 1, c = 2, d = 3;  // four independent chains
+                    for (int i = 0; i < 25000; i++) {
+                        a = a * 6364136223846793005u + 1;
+                        b ^= b << 13 ^ uint64_t(i);
+                        c += c >> 7 ^ a;
+                        d = d * 3 + b;
+                    }
+                    benchmark::DoNotOptimize(a + b + c + d);
+                }
+            });
+        }
     })->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 

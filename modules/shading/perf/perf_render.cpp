@@ -7,6 +7,7 @@
 //   fillConvexPoly  cv::fillConvexPoly per triangle, flat only
 //   clear           canvas.setTo(white) alone: the floor
 //   llvmpipe        Mesa's llvmpipe through OSMesa, when built with it (perf_llvmpipe.hpp)
+//   machine         pure arithmetic, 1 thread and all threads: how much the extra cores gave
 //
 // on the scenes of perf_scenes.hpp (grid, sphere, random at 512 and 2048, demo at 512); every
 // method clears the canvas and draws all faces in painter's order. Names and counters are
@@ -69,6 +70,9 @@ int main(int argc, char** argv)
     const std::vector<Scene> scenes = benchmarkScenes();  // outlives the benchmarks
     addMachineContext();
     benchmark::AddCustomContext("all_threads", std::to_string(allThreads));
+    addArithmeticBenchmark(1);
+    if (allThreads > 1)
+        addArithmeticBenchmark(allThreads);
     for (const Scene& sc : scenes) {
         if (sc.size.width <= 512)  // the plain rasterizer does not depend on the size
             benchmark::AddCustomContext(

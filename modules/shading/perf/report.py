@@ -67,7 +67,7 @@ def fmt_ratio(num, den):
 class Results:
     def __init__(self, contexts, times, counts):
         self.contexts, self.times, self.counts = contexts, times, counts
-        self.scenes = scene_order({k[1] for k in times})
+        self.scenes = scene_order({k[1] for k in times if k[0] != "machine"})
         self.all_threads = max((k[3] for k in times if k[0] == "render"), default=1)
 
     def get(self, method, scene, shade=None, threads=None):
@@ -98,6 +98,12 @@ def machine_lines(res):
              f"{res.all_threads} threads"]
     if ctx.get("llvmpipe_threads"):
         lines.append(f"- llvmpipe (OSMesa) with {ctx['llvmpipe_threads']} threads")
+    one, n = res.get("machine", "arithmetic", threads=1), res.get("machine", "arithmetic")
+    n_threads = max((k[3] for k in res.times if k[0] == "machine"), default=1)
+    if one and n and n_threads > 1:
+        lines.append(f"- Cores available during the run: pure arithmetic ran {one / n:.2f}x "
+                     f"faster on {n_threads} threads than on 1 (medians; {n_threads:.2f}x when "
+                     "every core is free)")
     checks = sorted((k, v) for k, v in ctx.items() if k.startswith("check_"))
     for k, v in checks:
         lines.append(f"- {k}: {v}")
