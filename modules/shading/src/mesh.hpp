@@ -541,12 +541,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             std::fill(rowLeft, rowLeft + bandRows, width);
             uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
-            // The rows of `box` within the band, as bits from y0; those whose part of the box
-            // is final already leave `visible`. kAny: only whether some row is left matters.
-            auto visibleRows = [&](const SampleBox& box, uint32_t& visible, auto kAny) {
+            // The rows of `box` within the band, as bits from y0, less the rows that are final
+            // everywhere and (with maskTest) those whose part of the box is final already.
+            // kAny: only whether some row is left matters.
+            auto visibleRows = [&](const SampleBox& box, uint32_t& visible, bool maskTest,
+                                   auto kAny) {
                 const int r0 = std::max(box.rowBegin, y0) - y0, r1 = std::min(box.rowEnd, y1) - y0;
                 visible = uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows;
-                if (visible)
+                if (visible && maskTest)
                     visible &= ~(coverage.finalRows<decltype(kAny)::value>(
                                      r0, r1, box.colFirst, box.colLast)
                                  << r0);
@@ -557,14 +559,20 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                 for (; next < orderSize && count < kBatch; next++) {
                     const int face = entryFace(order[next]);
                     uint32_t anyRows;
-                    if (visibleRows(boxes[face], anyRows, std::true_type()))  // else skipped unread
+                    if (visibleRows(boxes[face], anyRows, true, std::true_type()))  // else skipped
                         batchFaces[count++] = face;
                 }
                 const int batchSize = prepareBatch(batchFaces, count);
                 for (int i = 0; i < batchSize; i++) {
                     const BatchFace& bf = batch[i];
+                    // Small faces (a box within two mask words and 16 rows) are not tested
+                    // again: walking them costs about what the test does, and their claims skip
+                    // what is final. A bigger face may be hidden by the batch's earlier faces.
+                    const SampleBox& box = boxes[bf.face];
+                    const bool retest = box.colLast - box.colFirst >= 64 ||
+                                        box.rowEnd - box.rowBegin > 16;
                     uint32_t rowsToDraw;
-                    if (!visibleRows(boxes[bf.face], rowsToDraw, std::false_type()))  // hidden now
+                    if (!visibleRows(box, rowsToDraw, retest, std::false_type()))  // hidden now
                         continue;
                     const int firstRow = y0 + __builtin_ctz(rowsToDraw);
                     const int lastRow = y0 + 31 - __builtin_clz(rowsToDraw);
