@@ -85,10 +85,11 @@ inline void addBenchmark(const std::string& method, const Scene& sc, const char*
     })->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 
-/** Registers machine/arithmetic/threads:N: a fixed amount of pure integer arithmetic (no memory
-traffic) in 16 parts over cv::parallel_for_, with `threads` threads. Interleaved with the other
-benchmarks, its speed-up from 1 to N threads tells how much of the extra cores the run got: on a
-shared machine a core can be busy elsewhere for seconds, slowing every multi-threaded method. */
+/** Registers machine/arithmetic/threads:N: a fixed amount of arithmetic (floating-point and
+integer dependency chains, no memory traffic) in 16 parts over cv::parallel_for_, with `threads`
+threads. Interleaved with the other benchmarks, its speed-up from 1 to N threads tells how much of
+the extra cores the run got: on a shared machine a core can be slowed by other tenants for
+seconds, which slows every multi-threaded method. */
 inline void addArithmeticBenchmark(int threads)
 {
     const std::string name = "machine/arithmetic/threads:" + std::to_string(threads);
@@ -97,14 +98,17 @@ inline void addArithmeticBenchmark(int threads)
         for (auto _ : state) {
             cv::parallel_for_(cv::Range(0, 16), [](const cv::Range& parts) {
                 for (int part = parts.start; part < parts.end; part++) {
-                    uint64_t a = uint64_t(part), b = 1, c = 2, d = 3;  // four independent chains
-                    for (int i = 0; i < 25000; i++) {
-                        a = a * 6364136223846793005u + 1;
-                        b ^= b << 13 ^ uint64_t(i);
-                        c += c >> 7 ^ a;
-                        d = d * 3 + b;
+                    double a = 1, b = 2, c = 3, d = 4;
+                    uint64_t x = uint64_t(part), y = 2;
+                    for (int i = 0; i < 20000; i++) {
+                        a = a * 1.0000001 + 0.1;
+                        b = b * 0.9999 + 0.2;
+                        c += a;
+                        d += b;
+                        x = x * 3 + uint64_t(i);
+                        y ^= x >> 3;
                     }
-                    benchmark::DoNotOptimize(a + b + c + d);
+                    benchmark::DoNotOptimize(a + b + c + d + double(x + y));
                 }
             });
         }
