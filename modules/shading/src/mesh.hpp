@@ -456,6 +456,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
         static_assert(std::is_trivially_destructible<BatchFace>::value,
                       "batch entries are overwritten in place, never destroyed");
         constexpr int kBatch = 32;
+        constexpr size_t kBoxPrefetch = 16;  // entries ahead of the occlusion test
         // A band is drawn back to front, without a coverage mask, when the samples it would
         // shade more than once (estimated from face areas) are fewer than this many per face:
         // rewriting a few pixels costs less than the mask's work on every span of small faces.
@@ -557,10 +558,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             for (size_t next = 0; next < orderSize && fullRows != allRows;) {
                 int count = 0;
                 for (; next < orderSize && count < kBatch; next++) {
+                    // Faces come in depth order, their boxes from all over the array.
+                    if (next + kBoxPrefetch < orderSize)
+                        __builtin_prefetch(&boxes[entryFace(order[next + kBoxPrefetch])]);
                     const int face = entryFace(order[next]);
                     uint32_t anyRows;
-                    if (visibleRows(boxes[face], anyRows, true, std::true_type()))  // else skipped
+                    if (visibleRows(boxes[face], anyRows, true, std::true_type())) {  // else skipped
+                        __builtin_prefetch(&mesh.faces[face]);  // read by prepareBatch
                         batchFaces[count++] = face;
+                    }
                 }
                 const int batchSize = prepareBatch(batchFaces, count);
                 for (int i = 0; i < batchSize; i++) {
