@@ -138,6 +138,13 @@ inline void refineEqualKeys(uint64_t* items, size_t n, const double* exactKeys,
     }
 }
 
+//! Asks for the cache lines of [data, data + size) in advance, for writing.
+inline void prefetchBytes(const uchar* data, size_t size)
+{
+    for (size_t offset = 0; offset < size; offset += 64)
+        __builtin_prefetch(data + offset, 1);
+}
+
 /** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
 class CoverageBits {
 public:
@@ -539,6 +546,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             // Front to back with a coverage mask: each pixel is written once, by its first
             // (frontmost) face, and faces behind finished rows are skipped unread.
             coverage.clear();
+            // Visible runs land all over the band's rows: asking for all of its lines now lets
+            // the memory system fetch them in parallel, not one store miss at a time.
+            for (int y = y0; y < y1; y++)
+                prefetchBytes(canvasData + size_t(y) * canvasStep, size_t(width) * sizeof(T) * 3);
             std::fill(rowLeft, rowLeft + bandRows, width);
             uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
