@@ -142,7 +142,7 @@ def ratio_table(res):
     llvm = res.has("llvmpipe")
     if llvm:
         rows[0] += ["llvmpipe / render flat", "llvmpipe / render Gouraud"]
-    rows[0].append("render flat / clear")
+    rows[0] += ["render flat / clear", "render Gouraud / clear"]
     for s in res.scenes:
         flat, gour = res.get("render", s, "flat"), res.get("render", s, "gouraud")
         row = [s, fmt_ratio(res.get("plain", s, "flat"), flat),
@@ -151,7 +151,7 @@ def ratio_table(res):
         if llvm:
             row += [fmt_ratio(res.get("llvmpipe", s, "flat"), flat),
                     fmt_ratio(res.get("llvmpipe", s, "gouraud"), gour)]
-        row.append(fmt_ratio(flat, res.get("clear", s)))
+        row += [fmt_ratio(flat, res.get("clear", s)), fmt_ratio(gour, res.get("clear", s))]
         rows.append(row)
     return rows
 

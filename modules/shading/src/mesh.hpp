@@ -573,8 +573,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     if (next + kBoxPrefetch < orderSize)
                         __builtin_prefetch(&boxes[entryFace(order[next + kBoxPrefetch])]);
                     const int face = entryFace(order[next]);
-                    uint32_t anyRows;
-                    if (visibleRows(boxes[face], anyRows, true, std::true_type())) {  // else skipped
+                    uint32_t anyRows;  // a face whose box is final is skipped unread
+                    if (visibleRows(boxes[face], anyRows, true, std::true_type())) {
                         __builtin_prefetch(&mesh.faces[face]);  // read by prepareBatch
                         batchFaces[count++] = face;
                     }
