@@ -203,10 +203,32 @@ struct GouraudShader {
             w1 = double(edgeAt0[1] + edgeDx[1] * x + edgeDy[1] * y) * invArea2;
             w2 = double(edgeAt0[2] + edgeDx[2] * x + edgeDy[2] * y) * invArea2;
         } else {
-            const FixedPoint q = {int64_t(x) * kSubpixelOne, int64_t(y) * kSubpixelOne};
-            w0 = edgeValue(t.mid, t.bottom, q, false) * invArea2;
-            w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
-            w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
+            wideWeightsAt(t, x, y, w0, w1, w2);
+        }
+    }
+
+    //! weightsAt for triangles beyond 64-bit edge functions (rare): out of line, see
+    //! shadePerPixel.
+    __attribute__((noinline, cold)) void wideWeightsAt(const TriangleSetup& t, int x, int y,
+                                                       double& w0, double& w1, double& w2) const
+    {
+        const FixedPoint q = {int64_t(x) * kSubpixelOne, int64_t(y) * kSubpixelOne};
+        w0 = edgeValue(t.mid, t.bottom, q, false) * invArea2;
+        w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
+        w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
+    }
+
+    //! Huge colours: stepping in float could overflow where the values do not. Kept out of
+    //! line so that the common path needs few registers and no stack frame.
+    __attribute__((noinline, cold)) void shadePerPixel(const TriangleSetup& t, T* row, int y,
+                                                       int xBegin, int xEnd) const
+    {
+        for (int x = xBegin; x < xEnd; x++) {
+            double w0, w1, w2;
+            weightsAt(t, x, y, w0, w1, w2);
+            for (int k = 0; k < 3; k++)
+                row[3 * x + k] =
+                    toChannel<T>(float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]));
         }
     }
 
@@ -214,14 +236,7 @@ struct GouraudShader {
                     int xEnd) const
     {
         if (perPixel) {
-            // Huge colours: stepping in float could overflow where the values do not.
-            for (int x = xBegin; x < xEnd; x++) {
-                double w0, w1, w2;
-                weightsAt(t, x, y, w0, w1, w2);
-                for (int k = 0; k < 3; k++)
-                    row[3 * x + k] =
-                        toChannel<T>(float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]));
-            }
+            shadePerPixel(t, row, y, xBegin, xEnd);
             return;
         }
         double w0, w1, w2;
