@@ -73,8 +73,8 @@ TEST_P(ShadingScenes, EqualReferenceForAnyThreadCount)
     expectEqualReference(shading_perf::makeScene(GetParam(), 96), 1);
 }
 
-// 768 float pixels per row: bands of 16 rows instead of 32 (see bandRowsLog2For), as on big
-// canvases.
+// 768 float pixels per row: bands painted back to front in slices of 16 rows (see paintRowsFor),
+// as on big canvases.
 TEST_P(ShadingScenes, WideCanvasEqualsReference)
 {
     expectEqualReference(shading_perf::makeScene(GetParam(), 96), 8);
