@@ -32,13 +32,14 @@ class ShadingScenes : public testing::TestWithParam<std::string> {};
 
 namespace {
 
-// The scene at 96 pixels, stretched horizontally by xScale, against the reference.
-void expectEqualReference(const shading_perf::Scene& scene, int xScale)
+// The scene at 96 pixels, stretched by xScale and yScale, against the reference.
+void expectEqualReference(const shading_perf::Scene& scene, int xScale, int yScale = 1)
 {
     const auto& m = scene.mesh;
     Mat verts2d = m.verts2d.clone();
     verts2d.reshape(1, m.verts2d.rows).col(0) *= xScale;
-    const Size size(scene.size.width * xScale, scene.size.height);
+    verts2d.reshape(1, m.verts2d.rows).col(1) *= yScale;
+    const Size size(scene.size.width * xScale, scene.size.height * yScale);
     const std::vector<Point2d> verts = rowsOf<Point2d>(verts2d);
     const std::vector<Vec3i> faces = rowsOf<Vec3i>(m.faces);
     const std::vector<Vec3d> colors = rowsOf<Vec3d>(m.vcolors);
@@ -78,6 +79,12 @@ TEST_P(ShadingScenes, EqualReferenceForAnyThreadCount)
 TEST_P(ShadingScenes, WideCanvasEqualsReference)
 {
     expectEqualReference(shading_perf::makeScene(GetParam(), 96), 8);
+}
+
+// 768 rows: bands of 64 rows with 1 thread (see bandRowsLog2For), 32 with 2.
+TEST_P(ShadingScenes, TallCanvasEqualsReference)
+{
+    expectEqualReference(shading_perf::makeScene(GetParam(), 96), 1, 8);
 }
 
 INSTANTIATE_TEST_SUITE_P(BenchmarkScenes, ShadingScenes,

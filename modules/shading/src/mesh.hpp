@@ -156,23 +156,23 @@ public:
     void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
 
     /** Bit r - rowBegin is set when pixels [colFirst, colLast] of row r are all final, for r in
-    [rowBegin, rowEnd) (at most 32 rows): a face whose box lies within such rows adds nothing
+    [rowBegin, rowEnd) (at most 64 rows): a face whose box lies within such rows adds nothing
     there. An occlusion test per face, far cheaper than walking it. With kUntilOpenRow, stops at
     the first row that is not final (enough to tell whether any is open). */
     template <bool kUntilOpenRow = false>
-    uint32_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast) const
+    uint64_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast) const
     {
         const int first = colFirst >> 6, last = colLast >> 6;
         const uint64_t firstMask = ~uint64_t(0) << (colFirst & 63);
         const uint64_t lastMask = ~uint64_t(0) >> (63 - (colLast & 63));
         const uint64_t* words = bits_.data() + size_t(rowBegin) * wordsPerRow_;
         const uint64_t all = ~uint64_t(0);
-        uint32_t result = 0;
+        uint64_t result = 0;
         // One loop per box shape, so the rows' loop has no branch but its own.
         auto scan = [&](auto&& rowFinal) {
             for (int r = 0; r < rowEnd - rowBegin; r++, words += wordsPerRow_) {
                 const bool final = rowFinal(words);
-                result |= uint32_t(final) << r;
+                result |= uint64_t(final) << r;
                 if (kUntilOpenRow && !final)
                     break;
             }
@@ -257,11 +257,21 @@ private:
     std::vector<uint64_t> bits_;
 };
 
-/** Rows per band: 32, the most the band pass's row bit masks hold. Taller bands mean fewer faces
-crossing a band boundary, each sorted, tested and set up once per band it crosses: on the 512 x
-512 demo and sphere, 32 rows instead of 16 cut the instructions per render by 7% and 5%; on the
-deep random 2048 x 2048 scene, the time by about 15%. */
-constexpr int kBandRowsLog2 = 5;
+/** log2 of the rows per band: 64 (the most the band pass's row bit masks hold) when that still
+leaves at least 8 bands per thread, else 32. Taller bands mean fewer faces crossing a band
+boundary, each sorted, tested and set up once per band it crosses: 32 rows instead of 16 cut the
+instructions per render by 7% on the 512 x 512 demo, 64 instead of 16 by 13% on the deep random
+2048 x 2048 scene. Fewer bands balance the threads less finely. */
+inline int bandRowsLog2For(const Mat& canvas, int threads)
+{
+    return canvas.rows >= 64 * 8 * threads ? 6 : 5;
+}
+
+//! Bits 0 .. n - 1 set, for n in [0, 64].
+inline uint64_t rowsBelow(int n)
+{
+    return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
+}
 
 /** Rows of a band painted back to front at a time: 32 while that is at most 256 KB of canvas,
 else 16, so the rows being overwritten stay in a core's L2 cache. (Front to back writes each
@@ -319,7 +329,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     const Size size = canvas.size();
     const int faceCount = int(mesh.faces.size());
     const bool byDepth = !mesh.depth.empty();
-    const int bandShift = kBandRowsLog2;
+    const int bandShift = bandRowsLog2For(canvas, getNumThreads());
     const int bandRows = 1 << bandShift;
     const int paintRows = paintRowsFor(canvas);
     const int bandCount = (size.height + bandRows - 1) / bandRows;
@@ -459,7 +469,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
         CoverageBits coverage(bandRows, width);
         std::vector<uint64_t> scratch;
         std::vector<std::pair<double, uint64_t>> refineRun;
-        int rowLeft[32];  // pixels of each band row not yet final
+        int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
             Shader shader;
@@ -529,20 +539,28 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             if (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface) {
                 // Little overdraw: the painter's way is cheaper here. Background first, then
                 // every face back to front, overwriting; no coverage bookkeeping. A slice of
-                // rows at a time, so that what is overwritten is still in cache.
-                for (int s0 = y0; s0 < y1; s0 += paintRows) {
+                // rows at a time, so that what is overwritten is still in cache. The entries'
+                // sort keys, no longer needed, become the slices each face's box reaches.
+                const bool sliced = y1 - y0 > paintRows;
+                if (sliced)
+                    for (size_t i = 0; i < orderSize; i++) {
+                        const int face = entryFace(order[i]);
+                        const SampleBox& box = boxes[face];
+                        const int first = (std::max(box.rowBegin, y0) - y0) / paintRows;
+                        const int last = (std::min(box.rowEnd, y1) - 1 - y0) / paintRows;
+                        const uint32_t slices = (2u << last) - (1u << first);
+                        order[i] = uint64_t(slices) << 32 | uint32_t(face);
+                    }
+                for (int s0 = y0, slice = 0; s0 < y1; s0 += paintRows, slice++) {
                     const int s1 = std::min(y1, s0 + paintRows);
                     if (background)
                         for (int y = s0; y < s1; y++)
                             fillPixels(canvas.ptr<T>(y), 0, width, background->val);
                     for (size_t next = orderSize; next > 0;) {
                         int count = 0;
-                        for (; next > 0 && count < kBatch; next--) {
-                            const int face = entryFace(order[next - 1]);
-                            const SampleBox& box = boxes[face];
-                            if (box.rowBegin < s1 && box.rowEnd > s0)
-                                batchFaces[count++] = face;
-                        }
+                        for (; next > 0 && count < kBatch; next--)
+                            if (!sliced || (order[next - 1] >> (32 + slice) & 1))
+                                batchFaces[count++] = entryFace(order[next - 1]);
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
                             const BatchFace& bf = batch[i];
@@ -565,15 +583,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             for (int y = y0; y < y1; y++)
                 prefetchBytes(canvasData + size_t(y) * canvasStep, size_t(width) * sizeof(T) * 3);
             std::fill(rowLeft, rowLeft + bandRows, width);
-            uint32_t fullRows = 0;  // bit r: row y0 + r is final everywhere
-            const uint32_t allRows = uint32_t((uint64_t(1) << (y1 - y0)) - 1);
+            uint64_t fullRows = 0;  // bit r: row y0 + r is final everywhere
+            const uint64_t allRows = rowsBelow(y1 - y0);
             // The rows of `box` within the band, as bits from y0, less the rows that are final
             // everywhere and (with maskTest) those whose part of the box is final already.
             // kAny: only whether some row is left matters.
-            auto visibleRows = [&](const SampleBox& box, uint32_t& visible, bool maskTest,
+            auto visibleRows = [&](const SampleBox& box, uint64_t& visible, bool maskTest,
                                    auto kAny) {
                 const int r0 = std::max(box.rowBegin, y0) - y0, r1 = std::min(box.rowEnd, y1) - y0;
-                visible = uint32_t((uint64_t(1) << r1) - (uint64_t(1) << r0)) & ~fullRows;
+                visible = (rowsBelow(r1) & ~rowsBelow(r0)) & ~fullRows;
                 if (visible && maskTest)
                     visible &= ~(coverage.finalRows<decltype(kAny)::value>(
                                      r0, r1, box.colFirst, box.colLast)
@@ -587,7 +605,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     if (next + kBoxPrefetch < orderSize)
                         __builtin_prefetch(&boxes[entryFace(order[next + kBoxPrefetch])]);
                     const int face = entryFace(order[next]);
-                    uint32_t anyRows;  // a face whose box is final is skipped unread
+                    uint64_t anyRows;  // a face whose box is final is skipped unread
                     if (visibleRows(boxes[face], anyRows, true, std::true_type())) {
                         __builtin_prefetch(&mesh.faces[face]);  // read by prepareBatch
                         batchFaces[count++] = face;
@@ -602,11 +620,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     const SampleBox& box = boxes[bf.face];
                     const bool retest = box.colLast - box.colFirst >= 64 ||
                                         box.rowEnd - box.rowBegin > 16;
-                    uint32_t rowsToDraw;
+                    uint64_t rowsToDraw;
                     if (!visibleRows(box, rowsToDraw, retest, std::false_type()))  // hidden now
                         continue;
-                    const int firstRow = y0 + __builtin_ctz(rowsToDraw);
-                    const int lastRow = y0 + 31 - __builtin_clz(rowsToDraw);
+                    const int firstRow = y0 + __builtin_ctzll(rowsToDraw);
+                    const int lastRow = y0 + 63 - __builtin_clzll(rowsToDraw);
                     walkTriangle(bf.triangle, firstRow, lastRow + 1, width,
                                  [&](int y, int xBegin, int xEnd) {
                         const int r = y - y0;
@@ -617,7 +635,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                             bf.shader(bf.triangle, row, y, xBegin, a, b);
                         });
                         if (rowLeft[r] == 0)
-                            fullRows |= uint32_t(1) << r;
+                            fullRows |= uint64_t(1) << r;
                     });
                 }
             }
