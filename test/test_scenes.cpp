@@ -32,7 +32,7 @@ class ShadingScenes : public testing::TestWithParam<std::string> {};
 
 namespace {
 
-// The scene at 96 pixels, stretched by xScale and yScale, against the reference.
+// The scene, stretched by xScale and yScale, against the reference.
 void expectEqualReference(const shading_perf::Scene& scene, int xScale, int yScale = 1)
 {
     const auto& m = scene.mesh;
@@ -85,6 +85,18 @@ TEST_P(ShadingScenes, WideCanvasEqualsReference)
 TEST_P(ShadingScenes, TallCanvasEqualsReference)
 {
     expectEqualReference(shading_perf::makeScene(GetParam(), 96), 1, 8);
+}
+
+// A canvas of 16 MB or more (2048 x 700 float pixels): front-to-back bands are drawn in a scratch
+// tile and streamed out to the canvas (see kStreamedCanvasBytes), in bands of 64 rows with 1
+// thread and 32 with 2.
+TEST(ShadingScenesBig, StreamedCanvasEqualsReference)
+{
+    const Size size(2048, 700);
+    shading_perf::Scene scene{"random2048x700", size, shading_perf::makeRandom(2000, 4.0)};
+    scene.mesh.verts2d.col(0) *= size.width;  // unit square -> canvas
+    scene.mesh.verts2d.col(1) *= size.height;
+    expectEqualReference(scene, 1, 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(BenchmarkScenes, ShadingScenes,

@@ -19,7 +19,9 @@
 #include <opencv2/core/utility.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -143,6 +145,39 @@ inline void prefetchBytes(const uchar* data, size_t size)
 {
     for (size_t offset = 0; offset < size; offset += 64)
         __builtin_prefetch(data + offset, 1);
+}
+
+/** Copies `size` bytes to `dst` with streaming stores (where 16-byte aligned): the lines go to
+memory without first being read, as ordinary stores would read them. Call
+streamingStoresDone() before anything else may read dst. */
+inline void streamBytes(uchar* dst, const uchar* src, size_t size)
+{
+    size_t i = 0;
+#if CV_SIMD128
+    i = std::min(size, size_t(-reinterpret_cast<uintptr_t>(dst) & 15));
+    std::memcpy(dst, src, i);
+    for (; i + 64 <= size; i += 64) {
+        const v_uint8x16 a = v_load(src + i), b = v_load(src + i + 16);
+        const v_uint8x16 c = v_load(src + i + 32), d = v_load(src + i + 48);
+        v_store_aligned_nocache(dst + i, a);
+        v_store_aligned_nocache(dst + i + 16, b);
+        v_store_aligned_nocache(dst + i + 32, c);
+        v_store_aligned_nocache(dst + i + 48, d);
+    }
+    for (; i + 16 <= size; i += 16)
+        v_store_aligned_nocache(dst + i, v_load(src + i));
+#endif
+    std::memcpy(dst + i, src + i, size - i);
+}
+
+//! Orders the streaming stores before the stores that follow (they bypass the usual order).
+inline void streamingStoresDone()
+{
+#if CV_SSE2
+    _mm_sfence();
+#else
+    std::atomic_thread_fence(std::memory_order_seq_cst);
+#endif
 }
 
 /** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
@@ -465,9 +500,17 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
     uchar* const canvasData = canvas.data;
     const size_t canvasStep = canvas.step[0];
     const int width = size.width;
+    const size_t rowBytes = size_t(width) * canvas.elemSize();
+    // A canvas this big is not kept in the caches anyway: its front-to-back bands are drawn into
+    // a scratch tile, which stays cached, and then streamed out, so that the canvas's lines are
+    // written without first being read (half the memory traffic). Back-to-front slices gain
+    // nothing: they are overwritten in cache already, and the copy costs what the reads did.
+    constexpr size_t kStreamedCanvasBytes = size_t(16) << 20;
+    const bool streamBands = background && rowBytes * size.height >= kStreamedCanvasBytes;
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
         CoverageBits coverage(bandRows, width);
         std::vector<uint64_t> scratch;
+        AutoBuffer<uchar, 1> tile(0);  // the streamed bands' scratch rows, allocated on first use
         std::vector<std::pair<double, uint64_t>> refineRun;
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
@@ -578,10 +621,19 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             // Front to back with a coverage mask: each pixel is written once, by its first
             // (frontmost) face, and faces behind finished rows are skipped unread.
             coverage.clear();
-            // Visible runs land all over the band's rows: asking for all of its lines now lets
-            // the memory system fetch them in parallel, not one store miss at a time.
-            for (int y = y0; y < y1; y++)
-                prefetchBytes(canvasData + size_t(y) * canvasStep, size_t(width) * sizeof(T) * 3);
+            uchar* bandData = canvasData + size_t(y0) * canvasStep;  // row y0
+            size_t bandStep = canvasStep;
+            if (streamBands) {
+                if (tile.size() == 0)
+                    tile.allocate(size_t(bandRows) * rowBytes);
+                bandData = tile.data();
+                bandStep = rowBytes;
+            } else {
+                // Visible runs land all over the band's rows: asking for all of its lines now
+                // lets the memory system fetch them in parallel, not one store miss at a time.
+                for (int y = y0; y < y1; y++)
+                    prefetchBytes(canvasData + size_t(y) * canvasStep, rowBytes);
+            }
             std::fill(rowLeft, rowLeft + bandRows, width);
             uint64_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint64_t allRows = rowsBelow(y1 - y0);
@@ -630,7 +682,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                         const int r = y - y0;
                         if (!(rowsToDraw >> r & 1))
                             return;
-                        T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                        T* row = reinterpret_cast<T*>(bandData + size_t(r) * bandStep);
                         rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {
                             bf.shader(bf.triangle, row, y, xBegin, a, b);
                         });
@@ -641,14 +693,20 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
             }
             if (background) {
                 for (int y = y0; y < y1; y++) {
-                    T* row = canvas.ptr<T>(y);
+                    T* row = reinterpret_cast<T*>(bandData + size_t(y - y0) * bandStep);
                     // Claiming the whole row visits exactly what no face covered.
                     coverage.claim(y - y0, 0, width, [&](int a, int b) {
                         fillPixels(row, a, b, background->val);
                     });
                 }
             }
+            if (streamBands)
+                for (int y = y0; y < y1; y++)
+                    streamBytes(canvasData + size_t(y) * canvasStep,
+                                bandData + size_t(y - y0) * bandStep, rowBytes);
         }
+        if (streamBands)
+            streamingStoresDone();
     });
     if (work.capacityBytes() > MeshWorkspace::kKeepBytes)
         work = MeshWorkspace();
