@@ -1,5 +1,6 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 #include "input.hpp"
+#include "raster.hpp"
 
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/core/utility.hpp>
@@ -86,7 +87,7 @@ static bool anyIndexOutside(const int* indices, size_t n, int vertexCount)
         return n > 0;
     size_t i = 0;
     bool outside = false;
-#if CV_SIMD128
+#if OPENCV_SHADING_SIMD128
     // Unsigned a >= b as signed (a ^ sign) > (b - 1) ^ sign: SSE2 compares signed only.
     const v_int32x4 sign = v_setall_s32(INT_MIN);
     const v_int32x4 last = v_setall_s32(int(unsigned(vertexCount - 1) ^ 0x80000000u));

@@ -153,7 +153,7 @@ streamingStoresDone() before anything else may read dst. */
 inline void streamBytes(uchar* dst, const uchar* src, size_t size)
 {
     size_t i = 0;
-#if CV_SIMD128
+#if OPENCV_SHADING_SIMD128
     i = std::min(size, size_t(-reinterpret_cast<uintptr_t>(dst) & 15));
     std::memcpy(dst, src, i);
     for (; i + 64 <= size; i += 64) {

@@ -14,6 +14,13 @@
 #include <cstdint>
 #include <utility>
 
+/** 1: the span shaders and helpers use OpenCV's universal intrinsics where the platform has them;
+0: their scalar paths only (CMake option OPENCV_SHADING_SCALAR, which scripts/scalar.sh builds
+and tests, so that both paths stay exact). */
+#ifndef OPENCV_SHADING_SIMD128
+#define OPENCV_SHADING_SIMD128 CV_SIMD128
+#endif
+
 namespace cv {
 namespace shading {
 namespace detail {

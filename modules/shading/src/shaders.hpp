@@ -29,7 +29,7 @@ inline T toChannel(float v)
 base + step * (x - spanBegin), lane by lane. Each pixel is one 16-byte store whose fourth lane
 spills into the next pixel and is overwritten by that pixel's store; the run's last pixel is
 stored as 8 + 4 bytes, so nothing outside the run is touched. */
-#if CV_SIMD128
+#if OPENCV_SHADING_SIMD128
 inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd,
                              const v_float32x4& base, const v_float32x4& step)
 {
@@ -63,7 +63,7 @@ inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 {
     T* p = row + 3 * xBegin;
     T* const end = row + 3 * xEnd;
-#if CV_SIMD128
+#if OPENCV_SHADING_SIMD128
     if constexpr (std::is_same<T, float>::value) {
         const v_float32x4 c0(color[0], color[1], color[2], color[0]);
         if (xEnd - xBegin >= 8) {
@@ -101,7 +101,7 @@ struct FlatShader {
     void operator()(const TriangleSetup&, T* row, int /*y*/, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
-#if CV_SIMD128
+#if OPENCV_SHADING_SIMD128
         if constexpr (std::is_same<T, float>::value) {
             if (xEnd - xBegin < 16) {
                 // Spans of small faces are a few pixels: one store per pixel, no set-up.
@@ -151,7 +151,7 @@ struct GouraudShader {
                 edgeDy[i] = (b.x - a.x) * kSubpixelOne;
             }
         }
-#if CV_SIMD128 && CV_SIMD128_64F
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
         // Two channels at a time; a NaN fails the comparison too.
         const v_float64x2 limit = v_setall_f64(1e37);
         v_float64x2 inRange = v_setall_f64(0.0) == v_setall_f64(0.0);
@@ -241,7 +241,7 @@ struct GouraudShader {
         }
         double w0, w1, w2;
         weightsAt(t, spanBegin, y, w0, w1, w2);
-#if CV_SIMD128 && CV_SIMD128_64F
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
         if constexpr (std::is_same<T, float>::value) {
             // The scalar sums below, two channels per lane pair, in the same order.
             const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
@@ -257,7 +257,7 @@ struct GouraudShader {
         for (int k = 0; k < 3; k++)
             base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
         if constexpr (std::is_same<T, float>::value) {
-#if CV_SIMD128
+#if OPENCV_SHADING_SIMD128
             const v_float32x4 baseV(base[0], base[1], base[2], base[0]);
             storeFloatPixels(row, spanBegin, xBegin, xEnd, baseV, v_load(stepX));
 #else
