@@ -135,6 +135,12 @@ void readColors(InputArray arr, const char* argName, int expectedCount, std::vec
     readItems(arr, argName, expectedCount, out, pending);
 }
 
+void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
+                 PendingConversions* pending)
+{
+    readItems(arr, argName, expectedCount, out, pending);
+}
+
 void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces,
                PendingConversions* pending)
 {
@@ -201,8 +207,9 @@ void checkShadeType(int shadeType)
 {
     if (shadeType != SHADE_FLAT && shadeType != SHADE_GOURAUD)
         CV_Error(Error::StsBadFlag,
-                 format("shadeType: expected SHADE_FLAT (0) or SHADE_GOURAUD (1), got %d",
-                        shadeType));
+                 format("shadeType: expected SHADE_FLAT (0) or SHADE_GOURAUD (1), got %d%s",
+                        shadeType,
+                        shadeType == SHADE_PHONG ? " (SHADE_PHONG needs normals: drawMesh3d)" : ""));
 }
 
 }  // namespace detail

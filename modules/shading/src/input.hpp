@@ -34,6 +34,9 @@ void readPoints(InputArray arr, const char* argName, int expectedCount, std::vec
                 PendingConversions* pending = nullptr);
 void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
                 PendingConversions* pending = nullptr);
+//! 3D points or vectors (vertices, normals): rows of x, y, z.
+void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
+                 PendingConversions* pending = nullptr);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
                 PendingConversions* pending = nullptr);
@@ -44,6 +47,7 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
 
 //! Checks that `canvas` is a non-empty CV_32FC3 or CV_8UC3 image.
 void checkCanvas(InputOutputArray canvas, const char* argName);
+//! 2D functions: SHADE_FLAT or SHADE_GOURAUD.
 void checkShadeType(int shadeType);
 
 }  // namespace detail

@@ -323,11 +323,15 @@ struct MeshData {
     std::vector<Vec3i> faces;   //!< indices checked against vertices
     std::vector<Vec3d> colors;  //!< one per vertex
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order
+    //! One per face, or empty: the painter's key of each face instead of its vertices' mean
+    //! depth (3D: the mean camera depth of the face a clipped piece comes from).
+    std::vector<double> faceDepth;
 
     size_t capacityBytes() const
     {
         return vertices.capacity() * sizeof(Point2d) + faces.capacity() * sizeof(Vec3i) +
-               colors.capacity() * sizeof(Vec3d) + depth.capacity() * sizeof(double);
+               colors.capacity() * sizeof(Vec3d) +
+               (depth.capacity() + faceDepth.capacity()) * sizeof(double);
     }
 };
 
@@ -355,15 +359,35 @@ struct MeshWorkspace {
     }
 };
 
+/** The span shaders of the 2D functions: built from the colours of a face's vertices. */
+template <class ShaderType>
+struct VertexColorShaders {
+    using Shader = ShaderType;
+    const Vec3d* colors;  //!< one per vertex
+
+    void prefetchVertex(int vertex) const { __builtin_prefetch(&colors[vertex]); }
+
+    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int /*face*/) const
+    {
+        const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
+        return Shader(t, order, c);
+    }
+};
+
 /** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
-order). With `background`, pixels no face covers are set to it (render() needs no separate
-clear). */
-template <class Shader, typename T>
-void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* background)
+order), each face coloured by the shader `shaders.make(...)` builds for it. With `background`,
+pixels no face covers are set to it (render() needs no separate clear). With `depthTested`, the
+shaders test each sample against a depth buffer themselves (3D z-buffer): every face is drawn,
+in face order, so that of equally deep faces the earliest keeps the sample. */
+template <class Shaders, typename T>
+void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
+                     const Vec<T, 3>* background, bool depthTested = false)
 {
+    using Shader = typename Shaders::Shader;
     const Size size = canvas.size();
     const int faceCount = int(mesh.faces.size());
-    const bool byDepth = !mesh.depth.empty();
+    const bool byFaceDepth = !mesh.faceDepth.empty();
+    const bool byDepth = !depthTested && (!mesh.depth.empty() || byFaceDepth);
     const int bandShift = bandRowsLog2For(canvas, getNumThreads());
     const int bandRows = 1 << bandShift;
     const int paintRows = paintRowsFor(canvas);
@@ -416,7 +440,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                 box.rowBegin = box.rowEnd = 0;  // culled
                 if (byDepth) {
                     const double mean =
-                        (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
+                        byFaceDepth ? mesh.faceDepth[i]
+                                    : (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
                     if (std::isnan(mean))
                         continue;  // no place in the order: not drawn
                     depths[i] = mean;
@@ -556,7 +581,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                 for (int i = 0; i < count; i++)
                     for (int j = 0; j < 3; j++) {
                         points[i][j] = snapped[corners[i][j]];
-                        __builtin_prefetch(&mesh.colors[corners[i][j]]);
+                        shaders.prefetchVertex(corners[i][j]);
                     }
                 int prepared = 0;
                 for (int i = 0; i < count; i++) {
@@ -564,11 +589,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                     int vertexOrder[3];
                     if (!setupTriangle<true>(points[i], size, triangle, vertexOrder))
                         continue;
-                    const Vec3i& f = corners[i];
-                    const Vec3d* const c[3] = {&mesh.colors[f[0]], &mesh.colors[f[1]],
-                                               &mesh.colors[f[2]]};
-                    new (&batch[prepared++])
-                        BatchFace{triangle, Shader(triangle, vertexOrder, c), faces[i]};
+                    new (&batch[prepared++]) BatchFace{
+                        triangle, shaders.make(triangle, vertexOrder, corners[i], faces[i]),
+                        faces[i]};
                 }
                 return prepared;
             };
@@ -579,9 +602,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Vec<T, 3>* backgro
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
             const bool closedSurface = 4 * windingMinority >= orderSize &&
                                        bandArea[band] <= kSmallFaceSamples * double(orderSize);
-            if (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface) {
+            if (depthTested ||
+                (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface)) {
                 // Little overdraw: the painter's way is cheaper here. Background first, then
-                // every face back to front, overwriting; no coverage bookkeeping. A slice of
+                // every face back to front, overwriting; no coverage bookkeeping. (Depth-tested
+                // faces come unsorted, so in face order, and the shader decides.) A slice of
                 // rows at a time, so that what is overwritten is still in cache. The entries'
                 // sort keys, no longer needed, become the slices each face's box reaches.
                 const bool sliced = y1 - y0 > paintRows;

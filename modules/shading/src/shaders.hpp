@@ -119,38 +119,91 @@ struct FlatShader {
     }
 };
 
-/** Gouraud shading: the affine function of (x, y) through the three (snapped) vertices and their
-colours, which is what interpolating along the edges and then along the span gives.
-
-Each span starts from exact barycentric weights (integer edge functions at the span's first
-sample, divided by the exact twice-area), so the value stays accurate even for needles with
-vertices near the 2^40 limit; along the span it steps by the x-gradient in float. A pixel's value
-depends only on the triangle and its span's start, never on what was drawn before: masked and
-unmasked drawing, and any thread count, agree bit for bit. */
-template <typename T>
-struct GouraudShader {
-    double color[3][3];  //!< color[vertex][channel], vertices in the setup's canonical order
-    double invArea2;     //!< 1 / twice the signed area, in subpixel units
-    float stepX[4];      //!< d(colour)/dx per pixel; a copy of the first in the fourth lane
+/** Exact barycentric weights of a set-up triangle's samples: integer edge functions at the
+sample, each divided by the exact twice-area with one rounding, so they stay accurate even for
+needles with vertices near the 2^40 limit. Weight i belongs to the setup's vertex i (top, mid,
+bottom). */
+struct ExactWeights {
+    double invArea2;  //!< 1 / twice the signed area, in subpixel units
     //! Narrow triangles: edge function i (opposite vertex i) at pixel (x, y) is
     //! edgeAt0[i] + edgeDx[i] * x + edgeDy[i] * y, exactly, in 64 bits.
     int64_t edgeAt0[3], edgeDx[3], edgeDy[3];
-    //! A colour beyond +-1e37 (or not finite): values are computed per pixel, not stepped.
-    bool perPixel;
 
-    GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3])
+    explicit ExactWeights(const TriangleSetup& t)
     {
         const FixedPoint p[3] = {t.top, t.mid, t.bottom};
         if (t.narrow) {
-            const FixedPoint origin = {0, 0};
             for (int i = 0; i < 3; i++) {
                 const FixedPoint& a = p[(i + 1) % 3];
                 const FixedPoint& b = p[(i + 2) % 3];
-                edgeAt0[i] = (b.x - a.x) * (origin.y - a.y) - (b.y - a.y) * (origin.x - a.x);
+                edgeAt0[i] = -(b.x - a.x) * a.y + (b.y - a.y) * a.x;
                 edgeDx[i] = -(b.y - a.y) * kSubpixelOne;
                 edgeDy[i] = (b.x - a.x) * kSubpixelOne;
             }
         }
+        invArea2 = 1.0 / edgeValue(p[0], p[1], p[2], t.narrow);
+    }
+
+    //! Edge function of a -> b at q, (b - a) x (q - a), exact until its one rounding to double.
+    //! Narrow triangles stay in 64 bits: converting a 128-bit integer is a slow library call.
+    static double edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q,
+                            bool narrow)
+    {
+        if (narrow)
+            return double((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x));
+        return double(Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x));
+    }
+
+    //! d(weight_i)/dx per pixel: exact integers until the one division.
+    void stepX(const TriangleSetup& t, double dw[3]) const
+    {
+        dw[0] = -double(t.bottom.y - t.mid.y) * kSubpixelOne * invArea2;
+        dw[1] = -double(t.top.y - t.bottom.y) * kSubpixelOne * invArea2;
+        dw[2] = -double(t.mid.y - t.top.y) * kSubpixelOne * invArea2;
+    }
+
+    //! Barycentric weights of the sample (x, y): exact edge functions, one rounding each.
+    void at(const TriangleSetup& t, int x, int y, double& w0, double& w1, double& w2) const
+    {
+        if (t.narrow) {  // the same integers as edgeValue's, from precomputed coefficients
+            w0 = double(edgeAt0[0] + edgeDx[0] * x + edgeDy[0] * y) * invArea2;
+            w1 = double(edgeAt0[1] + edgeDx[1] * x + edgeDy[1] * y) * invArea2;
+            w2 = double(edgeAt0[2] + edgeDx[2] * x + edgeDy[2] * y) * invArea2;
+        } else {
+            wideAt(t, x, y, w0, w1, w2);
+        }
+    }
+
+    //! at() for triangles beyond 64-bit edge functions (rare): out of line, so that the common
+    //! path stays small enough to inline.
+    __attribute__((noinline, cold)) void wideAt(const TriangleSetup& t, int x, int y, double& w0,
+                                                double& w1, double& w2) const
+    {
+        const FixedPoint q = {int64_t(x) * kSubpixelOne, int64_t(y) * kSubpixelOne};
+        w0 = edgeValue(t.mid, t.bottom, q, false) * invArea2;
+        w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
+        w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
+    }
+};
+
+/** Gouraud shading: the affine function of (x, y) through the three (snapped) vertices and their
+colours, which is what interpolating along the edges and then along the span gives.
+
+Each span starts from exact barycentric weights (ExactWeights), so the value stays accurate for
+any triangle; along the span it steps by the x-gradient in float. A pixel's value depends only
+on the triangle and its span's start, never on what was drawn before: masked and unmasked
+drawing, and any thread count, agree bit for bit. */
+template <typename T>
+struct GouraudShader {
+    double color[3][3];  //!< color[vertex][channel], vertices in the setup's canonical order
+    ExactWeights weights;
+    float stepX[4];      //!< d(colour)/dx per pixel; a copy of the first in the fourth lane
+    //! A colour beyond +-1e37 (or not finite): values are computed per pixel, not stepped.
+    bool perPixel;
+
+    GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3])
+        : weights(t)
+    {
 #if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
         // Two channels at a time; a NaN fails the comparison too.
         const v_float64x2 limit = v_setall_f64(1e37);
@@ -171,11 +224,8 @@ struct GouraudShader {
                 perPixel |= !(std::abs(color[i][k]) <= 1e37);
             }
 #endif
-        invArea2 = 1.0 / edgeValue(p[0], p[1], p[2], t.narrow);
-        // d(weight_i)/dx = -(dy of the opposite edge) * 256 / area2; exact integers until here.
-        const double dw[3] = {-double(p[2].y - p[1].y) * kSubpixelOne * invArea2,
-                              -double(p[0].y - p[2].y) * kSubpixelOne * invArea2,
-                              -double(p[1].y - p[0].y) * kSubpixelOne * invArea2};
+        double dw[3];
+        weights.stepX(t, dw);
         // Clamped to float's range: an infinite step would turn the span's first pixel (step * 0)
         // into NaN for colours beyond float's range.
         const double maxStep = std::numeric_limits<float>::max();
@@ -185,37 +235,9 @@ struct GouraudShader {
         stepX[3] = stepX[0];
     }
 
-    //! Edge function of a -> b at q, (b - a) x (q - a), exact until its one rounding to double.
-    //! Narrow triangles stay in 64 bits: converting a 128-bit integer is a slow library call.
-    static double edgeValue(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q,
-                            bool narrow)
-    {
-        if (narrow)
-            return double((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x));
-        return double(Int128(b.x - a.x) * (q.y - a.y) - Int128(b.y - a.y) * (q.x - a.x));
-    }
-
-    //! Barycentric weights of the sample (x, y): exact edge functions, one rounding each.
     void weightsAt(const TriangleSetup& t, int x, int y, double& w0, double& w1, double& w2) const
     {
-        if (t.narrow) {  // the same integers as edgeValue's, from precomputed coefficients
-            w0 = double(edgeAt0[0] + edgeDx[0] * x + edgeDy[0] * y) * invArea2;
-            w1 = double(edgeAt0[1] + edgeDx[1] * x + edgeDy[1] * y) * invArea2;
-            w2 = double(edgeAt0[2] + edgeDx[2] * x + edgeDy[2] * y) * invArea2;
-        } else {
-            wideWeightsAt(t, x, y, w0, w1, w2);
-        }
-    }
-
-    //! weightsAt for triangles beyond 64-bit edge functions (rare): out of line, see
-    //! shadePerPixel.
-    __attribute__((noinline, cold)) void wideWeightsAt(const TriangleSetup& t, int x, int y,
-                                                       double& w0, double& w1, double& w2) const
-    {
-        const FixedPoint q = {int64_t(x) * kSubpixelOne, int64_t(y) * kSubpixelOne};
-        w0 = edgeValue(t.mid, t.bottom, q, false) * invArea2;
-        w1 = edgeValue(t.bottom, t.top, q, false) * invArea2;
-        w2 = edgeValue(t.top, t.mid, q, false) * invArea2;
+        weights.at(t, x, y, w0, w1, w2);
     }
 
     //! Huge colours: stepping in float could overflow where the values do not. Kept out of

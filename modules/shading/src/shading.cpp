@@ -93,9 +93,10 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
             bg[k] = saturate_cast<T>((*background)[k]);
     const Vec<T, 3>* fill = background ? &bg : nullptr;
     if (shadeType == SHADE_FLAT)
-        drawMeshInBands<FlatShader<T>, T>(canvas, mesh, fill);
+        drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
     else
-        drawMeshInBands<GouraudShader<T>, T>(canvas, mesh, fill);
+        drawMeshInBands(canvas, mesh, VertexColorShaders<GouraudShader<T>>{mesh.colors.data()},
+                        fill);
 }
 
 }  // namespace

@@ -41,8 +41,9 @@ namespace shading {
 
 //! How triangle interiors are coloured.
 enum ShadeType {
-    SHADE_FLAT = 0,    //!< one colour per triangle: the mean of its three vertex colours
-    SHADE_GOURAUD = 1  //!< vertex colours interpolated linearly in screen space
+    SHADE_FLAT = 0,     //!< one colour per triangle: the mean of its three vertex colours
+    SHADE_GOURAUD = 1,  //!< vertex colours interpolated linearly (perspective-correct in 3D)
+    SHADE_PHONG = 2     //!< normals interpolated and lit per sample (#drawMesh3d only)
 };
 
 /** @brief Fills one triangle with the mean of its vertex colours (flat shading).
@@ -77,7 +78,7 @@ were. The result is identical for any number of threads (`cv::setNumThreads`).
 @param vcolors L vertex colours, in the canvas's units.
 @param depth L vertex depths (larger is farther), or empty to draw faces in the order given.
 A face whose mean depth is NaN has no place in the order and is not drawn.
-@param shadeType #SHADE_FLAT or #SHADE_GOURAUD.
+@param shadeType #SHADE_FLAT or #SHADE_GOURAUD (#SHADE_PHONG needs normals: see #drawMesh3d).
 */
 CV_EXPORTS_W void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces,
                            InputArray vcolors, InputArray depth,
@@ -105,5 +106,7 @@ CV_EXPORTS_W void render(InputArray verts2d, InputArray faces, InputArray vcolor
 
 }  // namespace shading
 }  // namespace cv
+
+#include "shading/mesh3d.hpp"
 
 #endif  // OPENCV_SHADING_HPP

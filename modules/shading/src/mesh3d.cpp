@@ -1,0 +1,440 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// drawMesh3d: a 3D mesh becomes projected, clipped triangles with per-vertex 1/Zc and
+// attributes, drawn by the one 2D engine (mesh.hpp) with the 3D span shaders (shaders3d.hpp).
+//
+//   checks (all, before anything is written) -> camera coordinates -> normals and lighting
+//   inputs -> per face: cull, clip at zNear, project -> bands (z-buffer or painter's order)
+#include <opencv2/shading.hpp>
+
+#include "camera.hpp"
+#include "input.hpp"
+#include "mesh.hpp"
+#include "shaders3d.hpp"
+
+#include <opencv2/core/utility.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace cv {
+namespace shading {
+
+PointLight::PointLight() : position(0, 0, 0), intensity(1, 1, 1) {}
+
+PointLight::PointLight(const Point3d& position_, const Vec3d& intensity_)
+    : position(position_), intensity(intensity_)
+{
+}
+
+RenderSettings::RenderSettings()
+    : shadeType(SHADE_GOURAUD), visibility(VISIBILITY_ZBUFFER), cullMode(CULL_NONE), zNear(1e-3),
+      ambient(1, 1, 1), ka(0.2), kd(0.7), ks(0.5), shininess(16)
+{
+}
+
+using namespace detail;
+
+namespace {
+
+inline Vec3d faceNormal(const Vec3d& v0, const Vec3d& v1, const Vec3d& v2)
+{
+    return unitOrZero((v1 - v0).cross(v2 - v0));
+}
+
+inline bool isFinite(const Vec3d& v)
+{
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+//! Splits [0, count) into chunks for parallel_for_ and calls fn(begin, end) for each.
+template <typename Fn>
+void forChunks(int count, int chunk, Fn&& fn)
+{
+    parallel_for_(Range(0, (count + chunk - 1) / chunk), [&](const Range& r) {
+        for (int c = r.start; c < r.end; c++)
+            fn(c * chunk, std::min(count, (c + 1) * chunk));
+    });
+}
+
+/** Vertex normals (seed 004): the normalized sum of the unit normals of the faces using each
+vertex. Serial: the sums must not depend on the thread count. */
+void vertexNormalsOf(const std::vector<Vec3d>& verts, const std::vector<Vec3i>& faces,
+                     std::vector<Vec3d>& normals, std::vector<Vec3d>* perFace)
+{
+    normals.assign(verts.size(), Vec3d(0, 0, 0));
+    if (perFace)
+        perFace->resize(faces.size());
+    for (size_t i = 0; i < faces.size(); i++) {
+        const Vec3i& f = faces[i];
+        const Vec3d n = faceNormal(verts[f[0]], verts[f[1]], verts[f[2]]);
+        if (perFace)
+            (*perFace)[i] = n;
+        for (int k = 0; k < 3; k++)
+            normals[f[k]] += n;
+    }
+    for (Vec3d& n : normals)
+        n = unitOrZero(n);
+}
+
+void writeRows(const std::vector<Vec3d>& values, OutputArray out)
+{
+    Mat(int(values.size()), 3, CV_64F, const_cast<Vec3d*>(values.data())).convertTo(out, CV_32F);
+}
+
+void checkSettings(const RenderSettings& s)
+{
+    if (s.shadeType != SHADE_FLAT && s.shadeType != SHADE_GOURAUD && s.shadeType != SHADE_PHONG)
+        CV_Error(Error::StsBadFlag, format("settings.shadeType: expected SHADE_FLAT (0), "
+                                           "SHADE_GOURAUD (1) or SHADE_PHONG (2), got %d",
+                                           s.shadeType));
+    if (s.visibility != VISIBILITY_ZBUFFER && s.visibility != VISIBILITY_PAINTER)
+        CV_Error(Error::StsBadFlag, format("settings.visibility: expected VISIBILITY_ZBUFFER (0) "
+                                           "or VISIBILITY_PAINTER (1), got %d", s.visibility));
+    if (s.cullMode != CULL_NONE && s.cullMode != CULL_BACK && s.cullMode != CULL_FRONT)
+        CV_Error(Error::StsBadFlag, format("settings.cullMode: expected CULL_NONE (0), CULL_BACK "
+                                           "(1) or CULL_FRONT (2), got %d", s.cullMode));
+    if (!(s.zNear > 0 && std::isfinite(s.zNear)))
+        CV_Error(Error::StsOutOfRange,
+                 format("settings.zNear: expected a finite value > 0, got %g", s.zNear));
+    const std::pair<const char*, double> material[] = {
+        {"ka", s.ka}, {"kd", s.kd}, {"ks", s.ks}, {"shininess", s.shininess}};
+    for (const auto& m : material)
+        if (!(m.second >= 0 && std::isfinite(m.second)))
+            CV_Error(Error::StsOutOfRange, format("settings.%s: expected a finite value >= 0, "
+                                                  "got %g", m.first, m.second));
+    if (!isFinite(s.ambient))
+        CV_Error(Error::StsOutOfRange, "settings.ambient: values must be finite");
+    for (size_t i = 0; i < s.lights.size(); i++)
+        if (!isFinite(Vec3d(s.lights[i].position)) || !isFinite(s.lights[i].intensity))
+            CV_Error(Error::StsOutOfRange,
+                     format("settings.lights[%zu]: position and intensity must be finite", i));
+}
+
+/** The mesh as the band pass draws it: projected, clipped triangles, and per vertex 1 / Zc and
+kAttributes values (interpolated perspective-correctly by SurfaceShader). */
+struct ScreenMesh {
+    MeshData mesh;                   //!< projected vertices and faces; faceDepth for painter's
+    std::vector<double> invZ;        //!< per vertex
+    std::vector<double> attributes;  //!< per vertex, `stride` values
+    int stride = 0;
+    std::vector<int> source;         //!< per face: its index in the caller's faces
+    std::vector<Vec3d> faceColor;    //!< per face (flat shading), canvas units
+
+    size_t capacityBytes() const
+    {
+        return mesh.capacityBytes() + (invZ.capacity() + attributes.capacity()) * sizeof(double) +
+               source.capacity() * sizeof(int) + faceColor.capacity() * sizeof(Vec3d);
+    }
+};
+
+/** The span shaders of the 3D path, built per face from the ScreenMesh. */
+template <typename T, int kAttributes>
+struct SurfaceShaders {
+    using Shader = SurfaceShader<T, kAttributes>;
+    const ScreenMesh* screen;
+    const DepthTargets* targets;
+
+    void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
+
+    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
+    {
+        Shader s{ExactWeights(t), {}, {}, {}, targets, screen->source[face]};
+        for (int i = 0; i < 3; i++) {
+            const int v = f[order[i]];
+            s.invZ[i] = screen->invZ[v];
+            for (int k = 0; k < kAttributes; k++)
+                s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
+        }
+        if (kAttributes == 0)
+            for (int k = 0; k < 3; k++)
+                s.color[k] = toChannel<T>(float(screen->faceColor[face][k]));
+        return s;
+    }
+};
+
+//! The inputs of drawMesh3d, checked and converted.
+struct Mesh3dInput {
+    std::vector<Vec3d> verts, colors, normals;
+    std::vector<Vec3i> faces;
+};
+
+/** Moves the mesh into the camera frame, culls, clips at zNear and projects: fills `screen`.
+Attributes per vertex (stride): 0 flat, 3 a colour (Gouraud, or unlit), 9 world position, normal
+and colour (lit Phong). */
+void buildScreenMesh(const Mesh3dInput& in, const Camera& cam, const RenderSettings& settings,
+                     const Lighting& lighting, ScreenMesh& screen)
+{
+    const int vertexCount = int(in.verts.size()), faceCount = int(in.faces.size());
+    const bool lit = lighting.lit();
+    const int shade = settings.shadeType;
+    const int stride = shade == SHADE_FLAT ? 0 : shade == SHADE_PHONG && lit ? 9 : 3;
+    screen.stride = stride;
+    const double zNear = settings.zNear;
+    const bool painter = settings.visibility == VISIBILITY_PAINTER;
+    const Vec3d eye = cam.centre();
+
+    // Vertices: camera coordinates, validity, the projection of those in front, attributes.
+    std::vector<Vec3d> camera(vertexCount);
+    std::vector<Point2d>& projected = screen.mesh.vertices;
+    projected.resize(vertexCount);
+    screen.invZ.resize(vertexCount);
+    screen.attributes.resize(size_t(vertexCount) * stride);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    forChunks(vertexCount, 4096, [&](int begin, int end) {
+        for (int i = begin; i < end; i++) {
+            const Vec3d c = cam.toCamera(in.verts[i]);
+            camera[i] = isFinite(c) ? c : Vec3d(nan, nan, nan);
+            const bool front = c[2] >= zNear;  // false for NaN
+            projected[i] = front ? cam.project(c) : Point2d(nan, nan);
+            screen.invZ[i] = 1.0 / c[2];
+            double* a = screen.attributes.data() + size_t(i) * stride;
+            if (stride == 3) {
+                const Vec3d color = shade == SHADE_FLAT || !lit
+                                        ? in.colors[i]
+                                        : lighting.shade(in.verts[i], in.normals[i], in.colors[i]);
+                std::copy(color.val, color.val + 3, a);
+            } else if (stride == 9) {
+                std::copy(in.verts[i].val, in.verts[i].val + 3, a);
+                std::copy(in.normals[i].val, in.normals[i].val + 3, a + 3);
+                std::copy(in.colors[i].val, in.colors[i].val + 3, a + 6);
+            }
+        }
+    });
+
+    // Faces, in two parallel passes over chunks: what each face becomes (culled, whole, or cut
+    // into one or two triangles with two new vertices), then, at offsets from prefix sums, the
+    // faces and new vertices themselves. Face order (and so the tie order) is kept.
+    enum : uint8_t { kSkip = 0, kWhole = 1, kCutOne = 2, kCutTwo = 3 };  // vertices behind
+    std::vector<uint8_t> kind(faceCount);
+    constexpr int kChunk = 4096;
+    const int chunks = (faceCount + kChunk - 1) / kChunk;
+    std::vector<int> chunkFaces(chunks + 1, 0), chunkVertices(chunks + 1, 0);
+    forChunks(faceCount, kChunk, [&](int begin, int end) {
+        int faces = 0, vertices = 0;
+        for (int i = begin; i < end; i++) {
+            const Vec3i& f = in.faces[i];
+            const Vec3d& c0 = camera[f[0]];
+            const Vec3d& c1 = camera[f[1]];
+            const Vec3d& c2 = camera[f[2]];
+            kind[i] = kSkip;
+            if (std::isnan(c0[0]) || std::isnan(c1[0]) || std::isnan(c2[0]))
+                continue;
+            if (settings.cullMode != CULL_NONE) {
+                const Vec3d& v0 = in.verts[f[0]];
+                const double facing = (in.verts[f[1]] - v0).cross(in.verts[f[2]] - v0).dot(eye - v0);
+                if (settings.cullMode == CULL_BACK ? !(facing > 0) : !(facing < 0))
+                    continue;
+            }
+            const int behind = (c0[2] < zNear) + (c1[2] < zNear) + (c2[2] < zNear);
+            kind[i] = behind == 0 ? kWhole : behind == 1 ? kCutOne : behind == 2 ? kCutTwo : kSkip;
+            faces += kind[i] == kWhole || kind[i] == kCutTwo ? 1 : kind[i] == kCutOne ? 2 : 0;
+            vertices += kind[i] >= kCutOne ? 2 : 0;
+        }
+        chunkFaces[begin / kChunk + 1] = faces;
+        chunkVertices[begin / kChunk + 1] = vertices;
+    });
+    for (int c = 0; c < chunks; c++) {
+        chunkFaces[c + 1] += chunkFaces[c];
+        chunkVertices[c + 1] += chunkVertices[c];
+    }
+    const int outFaces = chunkFaces[chunks], outVertices = vertexCount + chunkVertices[chunks];
+    screen.mesh.faces.resize(outFaces);
+    screen.source.resize(outFaces);
+    screen.mesh.faceDepth.resize(painter ? outFaces : 0);
+    screen.faceColor.resize(shade == SHADE_FLAT ? outFaces : 0);
+    projected.resize(outVertices);
+    screen.invZ.resize(outVertices);
+    screen.attributes.resize(size_t(outVertices) * stride);
+
+    forChunks(faceCount, kChunk, [&](int begin, int end) {
+        int nextFace = chunkFaces[begin / kChunk];
+        int nextVertex = vertexCount + chunkVertices[begin / kChunk];
+        // The point where edge front -> back meets the near plane, as a new vertex. Always
+        // computed from the vertex in front, so faces sharing the edge share the point exactly.
+        auto cut = [&](int front, int back) {
+            const Vec3d& a = camera[front];
+            const Vec3d& b = camera[back];
+            const double s = (a[2] - zNear) / (a[2] - b[2]);
+            const Vec3d c(a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), zNear);
+            const int v = nextVertex++;
+            projected[v] = cam.project(c);
+            screen.invZ[v] = 1.0 / zNear;
+            const double* fa = screen.attributes.data() + size_t(front) * stride;
+            const double* ba = screen.attributes.data() + size_t(back) * stride;
+            double* va = screen.attributes.data() + size_t(v) * stride;
+            for (int k = 0; k < stride; k++)
+                va[k] = fa[k] + s * (ba[k] - fa[k]);
+            return v;
+        };
+        for (int i = begin; i < end; i++) {
+            if (kind[i] == kSkip)
+                continue;
+            const Vec3i& f = in.faces[i];
+            const int first = nextFace;
+            if (kind[i] == kWhole) {
+                screen.mesh.faces[nextFace++] = f;
+            } else {
+                // Rotate so that f[r] is the vertex alone on its side of the plane; rotation
+                // keeps the winding.
+                const bool aloneInFront = kind[i] == kCutTwo;
+                int r = 0;
+                while ((camera[f[r]][2] < zNear) == aloneInFront)
+                    r++;
+                const int a = f[r], b = f[(r + 1) % 3], c = f[(r + 2) % 3];
+                if (aloneInFront) {  // a in front: triangle a, ab, ca
+                    const int ab = cut(a, b), ca = cut(a, c);
+                    screen.mesh.faces[nextFace++] = Vec3i(a, ab, ca);
+                } else {  // a behind: quad ab, b, c, ca as two triangles
+                    const int ab = cut(b, a), ca = cut(c, a);
+                    screen.mesh.faces[nextFace++] = Vec3i(ab, b, c);
+                    screen.mesh.faces[nextFace++] = Vec3i(ab, c, ca);
+                }
+            }
+            Vec3d flat;
+            if (shade == SHADE_FLAT) {
+                const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
+                // The mean as the 2D flats() takes it, then lit at the centroid.
+                const Vec3d mean((c0[0] + c1[0] + c2[0]) / 3.0, (c0[1] + c1[1] + c2[1]) / 3.0,
+                                 (c0[2] + c1[2] + c2[2]) / 3.0);
+                const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
+                flat = lit ? lighting.shade((v0 + v1 + v2) * (1.0 / 3.0), faceNormal(v0, v1, v2),
+                                            mean)
+                           : mean;
+            }
+            const double depth =
+                painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
+            for (int k = first; k < nextFace; k++) {
+                screen.source[k] = i;
+                if (painter)
+                    screen.mesh.faceDepth[k] = depth;
+                if (shade == SHADE_FLAT)
+                    screen.faceColor[k] = flat;
+            }
+        }
+    });
+}
+
+template <typename T>
+void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets)
+{
+    const bool test = targets.test;
+    switch (screen.stride) {
+    case 0:
+        drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 0>{&screen, &targets},
+                        static_cast<const Vec<T, 3>*>(nullptr), test);
+        break;
+    case 3:
+        drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 3>{&screen, &targets},
+                        static_cast<const Vec<T, 3>*>(nullptr), test);
+        break;
+    default:
+        drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 9>{&screen, &targets},
+                        static_cast<const Vec<T, 3>*>(nullptr), test);
+        break;
+    }
+}
+
+}  // namespace
+
+void computeNormals(InputArray verts3d, InputArray faces, OutputArray vertexNormals,
+                    OutputArray faceNormals)
+{
+    std::vector<Vec3d> verts, normals, perFace;
+    std::vector<Vec3i> faceList;
+    readVectors(verts3d, "verts3d", -1, verts);
+    readFaces(faces, "faces", int(verts.size()), faceList);
+    vertexNormalsOf(verts, faceList, normals, faceNormals.needed() ? &perFace : nullptr);
+    writeRows(normals, vertexNormals);
+    if (faceNormals.needed())
+        writeRows(perFace, faceNormals);
+}
+
+void drawMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray faces,
+                InputArray vcolors, InputArray cameraMatrix, InputArray rvec, InputArray tvec,
+                const RenderSettings& settings, InputArray normals,
+                InputOutputArray depthBuffer, OutputArray faceIds)
+{
+    // Every argument is checked before anything is written.
+    checkCanvas(canvasArr, "canvas");
+    checkSettings(settings);
+    const Camera cam = readCamera(cameraMatrix, rvec, tvec);
+    thread_local Mesh3dInput in;
+    readVectors(verts3d, "verts3d", -1, in.verts);
+    const int vertexCount = int(in.verts.size());
+    readColors(vcolors, "vcolors", vertexCount, in.colors);
+    readFaces(faces, "faces", vertexCount, in.faces);
+    const bool lit = !settings.lights.empty();
+    const bool needNormals = lit && settings.shadeType != SHADE_FLAT;
+    if (!normals.empty()) {
+        readVectors(normals, "normals", vertexCount, in.normals);
+        for (int i = 0; i < vertexCount; i++)
+            if (!isFinite(in.normals[i]))
+                CV_Error(Error::StsOutOfRange,
+                         format("normals: normal %d is not finite", i));
+    } else if (needNormals) {
+        vertexNormalsOf(in.verts, in.faces, in.normals, nullptr);
+    }
+    const Size size = canvasArr.size();
+    const bool depthGiven = !depthBuffer.empty();
+    if (depthGiven && (depthBuffer.type() != CV_32FC1 || depthBuffer.size() != size))
+        CV_Error(Error::StsBadArg,
+                 format("depthBuffer: expected a %dx%d CV_32FC1 image (the canvas's size) or an "
+                        "empty one, got %dx%d %s", size.width, size.height,
+                        depthBuffer.size().width, depthBuffer.size().height,
+                        typeToString(depthBuffer.type()).c_str()));
+
+    Mat canvas = canvasArr.getMat();
+    Lighting lighting;
+    lighting.unit = canvas.depth() == CV_8U ? 255.0 : 1.0;
+    lighting.eye = cam.centre();
+    lighting.ambient = settings.ambient * settings.ka;
+    lighting.kd = settings.kd, lighting.ks = settings.ks, lighting.shininess = settings.shininess;
+    for (const PointLight& l : settings.lights)
+        lighting.lights.push_back({Vec3d(l.position), l.intensity});
+    if (!normals.empty() || needNormals)
+        for (Vec3d& n : in.normals)
+            n = unitOrZero(n);  // used as unit normals (one-sided, as given)
+
+    thread_local ScreenMesh screen;
+    buildScreenMesh(in, cam, settings, lighting, screen);
+
+    // Outputs: created only now that every argument passed.
+    const bool zbuffer = settings.visibility == VISIBILITY_ZBUFFER;
+    Mat depth;
+    if (depthGiven) {
+        depth = depthBuffer.getMat();
+    } else if (depthBuffer.needed() || zbuffer) {
+        if (depthBuffer.needed()) {
+            depthBuffer.create(size, CV_32FC1);
+            depth = depthBuffer.getMat();
+        } else {
+            depth.create(size, CV_32FC1);
+        }
+        depth.setTo(Scalar::all(std::numeric_limits<double>::infinity()));
+    }
+    Mat ids;
+    if (faceIds.needed()) {
+        faceIds.create(size, CV_32SC1);
+        ids = faceIds.getMat();
+        ids.setTo(Scalar::all(-1));
+    }
+    DepthTargets targets;
+    targets.depth = depth.empty() ? nullptr : depth.data;
+    targets.depthStep = depth.empty() ? 0 : depth.step[0];
+    targets.ids = ids.empty() ? nullptr : ids.data;
+    targets.idsStep = ids.empty() ? 0 : ids.step[0];
+    targets.test = zbuffer;
+    targets.lighting = &lighting;
+    if (canvas.depth() == CV_8U)
+        drawScreenMesh<uchar>(canvas, screen, targets);
+    else
+        drawScreenMesh<float>(canvas, screen, targets);
+    if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
+        screen = ScreenMesh();
+    if (in.verts.capacity() * sizeof(Vec3d) * 3 > MeshWorkspace::kKeepBytes)
+        in = Mesh3dInput();
+}
+
+}  // namespace shading
+}  // namespace cv
