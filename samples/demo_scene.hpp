@@ -4,13 +4,17 @@
 // single .cpp a user can copy next to this header.
 //
 //   makeDemoScene()  a built-in mesh (a perspective-projected torus knot, ~10,000 triangles)
+//   makeDemoMesh3d() the same knot as a 3D mesh for cv::shading::drawMesh3d (unlit colours)
 //   loadScene()      a mesh from an OpenCV FileStorage file (YAML or JSON)
+//   loadMesh3d()     a 3D mesh from such a file
 //   saveOrShow()     RGB float image -> BGR 8-bit PNG, plus a window when a display is there
 //   runRenderDemo()  the command line, timing and output shared by demo_flat and demo_gouraud
 //
 // Mesh files hold four matrices, the arguments of cv::shading::render:
 //   verts2d  L x 2 (x, y) pixel coordinates     faces  K x 3 zero-based vertex indices
 //   vcolors  L x 3 RGB in [0, 1]                 depth  L x 1 (larger is farther)
+// 3D mesh files (for drawMesh3d) hold verts3d (L x 3 world coordinates), faces, vcolors and
+// optionally normals (L x 3); one file may hold both sets.
 // e.g. written from Python with cv2.FileStorage("mesh.yml", cv2.FILE_STORAGE_WRITE).write(...).
 #ifndef OPENCV_SHADING_SAMPLES_DEMO_SCENE_HPP
 #define OPENCV_SHADING_SAMPLES_DEMO_SCENE_HPP
@@ -41,6 +45,14 @@ struct MeshScene {
     cv::Mat depth;    //!< L x 1 CV_32F: camera-space distance, larger is farther
 };
 
+//! A 3D triangle mesh in the form cv::shading::drawMesh3d takes.
+struct Mesh3d {
+    cv::Mat verts3d;  //!< L x 3 CV_32F: world coordinates
+    cv::Mat faces;    //!< K x 3 CV_32S: zero-based indices into verts3d
+    cv::Mat vcolors;  //!< L x 3 CV_32F: RGB in [0, 1], unlit (drawMesh3d lights them)
+    cv::Mat normals;  //!< L x 3 CV_32F unit vertex normals, or empty: drawMesh3d computes them
+};
+
 namespace detail {
 
 inline cv::Vec3d normalized(const cv::Vec3d& v) { return v * (1.0 / cv::norm(v)); }
@@ -67,32 +79,117 @@ inline bool envFlag(const char* name)
     return v != nullptr && *v != '\0' && std::string(v) != "0";
 }
 
-// Reads one required matrix as `rows x cols` of `type`, accepting the layouts users write
-// (multi-channel N x 1, a 1 x N depth row) and converting the element type once.
-inline cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const char* key,
-                          int cols, int type)
+// An open mesh file and what its loader says in errors.
+struct MeshFile {
+    cv::FileStorage fs;
+    std::string path;
+    std::string loader;  // "loadScene", "loadMesh3d"
+    std::string keys;    // the matrices a file needs, for the message when one is missing
+};
+
+inline MeshFile openMeshFile(const std::string& path, const std::string& loader,
+                             const std::string& keys)
 {
-    const cv::FileNode node = fs[key];
-    if (node.empty())
+    if (!std::ifstream(path))  // checked first for a clear message (FileStorage logs its own)
+        CV_Error(cv::Error::StsError,
+                 cv::format("%s: cannot read '%s'", loader.c_str(), path.c_str()));
+    MeshFile f{cv::FileStorage(path, cv::FileStorage::READ), path, loader, keys};
+    if (!f.fs.isOpened())
+        CV_Error(cv::Error::StsError, cv::format("%s: cannot open '%s' as an OpenCV YAML/JSON file",
+                                                 loader.c_str(), path.c_str()));
+    return f;
+}
+
+// Reads one matrix as `rows x cols` of `type`, accepting the layouts users write (multi-channel
+// N x 1, a 1 x N depth row) and converting the element type once. A missing optional matrix
+// comes back empty.
+inline cv::Mat readMatrix(const MeshFile& f, const char* key, int cols, int type,
+                          bool required = true)
+{
+    const char* who = f.loader.c_str();
+    const char* path = f.path.c_str();
+    const cv::FileNode node = f.fs[key];
+    if (node.empty()) {
+        if (!required)
+            return cv::Mat();
         CV_Error(cv::Error::StsParseError,
-                 cv::format("loadScene: '%s' has no matrix '%s' (a mesh file needs verts2d, "
-                            "faces, vcolors and depth)", path.c_str(), key));
+                 cv::format("%s: '%s' has no matrix '%s' (a mesh file needs %s)", who, path, key,
+                            f.keys.c_str()));
+    }
     cv::Mat m;
     node >> m;
     if (m.empty())
         CV_Error(cv::Error::StsParseError,
-                 cv::format("loadScene: '%s': '%s' is empty or not an OpenCV matrix",
-                            path.c_str(), key));
+                 cv::format("%s: '%s': '%s' is empty or not an OpenCV matrix", who, path, key));
     m = m.reshape(1);
     if (cols == 1 && m.rows == 1)
         m = m.t();  // a depth row vector
     if (m.cols != cols)
         CV_Error(cv::Error::StsBadSize,
-                 cv::format("loadScene: '%s': '%s' is %d x %d, expected N x %d", path.c_str(),
-                            key, m.rows, m.cols, cols));
+                 cv::format("%s: '%s': '%s' is %d x %d, expected N x %d", who, path, key, m.rows,
+                            m.cols, cols));
     cv::Mat out;
     m.convertTo(out, type);
     return out;
+}
+
+// The demo knot as a closed tube in world space: what makeDemoScene projects and makeDemoMesh3d
+// returns. Vertex i * around + j lies on ring i (knot parameter t = 2 pi i / along), at angle
+// 2 pi j / around about the knot.
+struct KnotTube {
+    int along = 0, around = 0;
+    std::vector<cv::Vec3d> centre;  // per vertex: the point of the knot its ring surrounds
+    std::vector<cv::Vec3d> radial;  // per vertex: unit outward normal of the tube
+    cv::Mat faces;                  // K x 3 CV_32S, counter-clockwise about the outward normal
+};
+
+const double kTubeRadius = 0.42;
+
+inline KnotTube makeKnotTube(int approxTriangles)
+{
+    CV_Assert(approxTriangles > 0);
+    KnotTube tube;
+    // Triangles = 2 * along * around; ~12 quads along per quad around keeps them near-square.
+    tube.around = std::max(3, static_cast<int>(std::lround(std::sqrt(approxTriangles / 25.0))));
+    tube.along = std::max(3, static_cast<int>(std::lround(approxTriangles / (2.0 * tube.around))));
+    const int along = tube.along, around = tube.around;
+    tube.centre.reserve(static_cast<size_t>(along) * around);
+    tube.radial.reserve(static_cast<size_t>(along) * around);
+
+    const double h = 1e-3;  // step for the curve's derivatives (central differences)
+    for (int i = 0; i < along; ++i) {
+        const double t = 2.0 * CV_PI * i / along;
+        // Frenet frame: the trefoil's curvature never vanishes, so it is well defined.
+        const cv::Vec3d c = trefoil(t);
+        const cv::Vec3d d1 = trefoil(t + h) - trefoil(t - h);
+        const cv::Vec3d d2 = trefoil(t + h) - 2.0 * c + trefoil(t - h);
+        const cv::Vec3d tangent = normalized(d1);
+        const cv::Vec3d normal = normalized(d2 - d2.dot(tangent) * tangent);
+        const cv::Vec3d binormal = tangent.cross(normal);
+        for (int j = 0; j < around; ++j) {
+            const double a = 2.0 * CV_PI * j / around;
+            tube.centre.push_back(c);
+            tube.radial.push_back(std::cos(a) * normal + std::sin(a) * binormal);
+        }
+    }
+
+    // Two triangles per quad of the (along x around) grid, wrapping both ways: a closed tube.
+    // (tangent, d radial / d a, radial) is right-handed, so (a, c, b) and (a, d, c) turn
+    // counter-clockwise seen from outside.
+    std::vector<cv::Vec3i> faces;
+    faces.reserve(2 * static_cast<size_t>(along) * around);
+    for (int i = 0; i < along; ++i) {
+        for (int j = 0; j < around; ++j) {
+            const int a = i * around + j;
+            const int b = ((i + 1) % along) * around + j;
+            const int c = ((i + 1) % along) * around + (j + 1) % around;
+            const int d = i * around + (j + 1) % around;
+            faces.emplace_back(a, c, b);
+            faces.emplace_back(a, d, c);
+        }
+    }
+    tube.faces = cv::Mat(faces, true).reshape(1);  // K x 3 CV_32S
+    return tube;
 }
 
 }  // namespace detail
@@ -106,11 +203,8 @@ its back faces are kept: the painter's order (depth = distance to the eye) hides
 inline MeshScene makeDemoScene(cv::Size size = {512, 512}, int approxTriangles = 10000)
 {
     CV_Assert(size.width > 0 && size.height > 0 && approxTriangles > 0);
-    // Triangles = 2 * along * around; ~12 quads along per quad around keeps them near-square.
-    const int around = std::max(3, static_cast<int>(std::lround(std::sqrt(approxTriangles / 25.0))));
-    const int along = std::max(3, static_cast<int>(std::lround(approxTriangles / (2.0 * around))));
-    const int nverts = along * around;
-    const double tubeRadius = 0.42;
+    const detail::KnotTube tube = detail::makeKnotTube(approxTriangles);
+    const int nverts = tube.along * tube.around;
 
     // Camera: object tilted for a 3/4 view, then pushed 9 units down +z in front of the eye.
     const cv::Matx33d rx(1, 0, 0, 0, std::cos(-0.75), -std::sin(-0.75), 0, std::sin(-0.75),
@@ -125,39 +219,27 @@ inline MeshScene makeDemoScene(cv::Size size = {512, 512}, int approxTriangles =
     s.verts2d.create(nverts, 2, CV_32F);
     s.vcolors.create(nverts, 3, CV_32F);
     s.depth.create(nverts, 1, CV_32F);
+    s.faces = tube.faces;
     std::vector<cv::Point2d> proj(static_cast<size_t>(nverts));
 
-    const double h = 1e-3;  // step for the curve's derivatives (central differences)
-    for (int i = 0; i < along; ++i) {
-        const double t = 2.0 * CV_PI * i / along;
-        // Frenet frame: the trefoil's curvature never vanishes, so it is well defined.
-        const cv::Vec3d c = detail::trefoil(t);
-        const cv::Vec3d d1 = detail::trefoil(t + h) - detail::trefoil(t - h);
-        const cv::Vec3d d2 = detail::trefoil(t + h) - 2.0 * c + detail::trefoil(t - h);
-        const cv::Vec3d tangent = detail::normalized(d1);
-        const cv::Vec3d normal = detail::normalized(d2 - d2.dot(tangent) * tangent);
-        const cv::Vec3d binormal = tangent.cross(normal);
-        const cv::Vec3d base = detail::palette(static_cast<double>(i) / along);
+    for (int v = 0; v < nverts; ++v) {
+        const cv::Vec3d& radial = tube.radial[static_cast<size_t>(v)];
+        const cv::Vec3d n = rot * radial;  // the tube's surface normal, in camera space
+        const cv::Vec3d p = rot * (tube.centre[static_cast<size_t>(v)] +
+                                   detail::kTubeRadius * radial) + eyeOffset;
+        const cv::Vec3d base = detail::palette(static_cast<double>(v / tube.around) / tube.along);
 
-        for (int j = 0; j < around; ++j) {
-            const double a = 2.0 * CV_PI * j / around;
-            const cv::Vec3d radial = std::cos(a) * normal + std::sin(a) * binormal;
-            const cv::Vec3d n = rot * radial;  // the tube's surface normal, in camera space
-            const cv::Vec3d p = rot * (c + tubeRadius * radial) + eyeOffset;
-            const int v = i * around + j;
+        // Camera looks down +z with y up; the image's y grows downwards.
+        proj[static_cast<size_t>(v)] = {p[0] / p[2], -p[1] / p[2]};
+        s.depth.at<float>(v) = static_cast<float>(cv::norm(p));
 
-            // Camera looks down +z with y up; the image's y grows downwards.
-            proj[static_cast<size_t>(v)] = {p[0] / p[2], -p[1] / p[2]};
-            s.depth.at<float>(v) = static_cast<float>(cv::norm(p));
-
-            const cv::Vec3d toEye = detail::normalized(-p);
-            const double diffuse = std::max(0.0, n.dot(light));
-            const double specular =
-                std::pow(std::max(0.0, n.dot(detail::normalized(light + toEye))), 16.0);
-            for (int k = 0; k < 3; ++k)
-                s.vcolors.at<float>(v, k) = static_cast<float>(
-                    std::min(1.0, base[k] * (0.22 + 0.78 * diffuse) + 0.3 * specular));
-        }
+        const cv::Vec3d toEye = detail::normalized(-p);
+        const double diffuse = std::max(0.0, n.dot(light));
+        const double specular =
+            std::pow(std::max(0.0, n.dot(detail::normalized(light + toEye))), 16.0);
+        for (int k = 0; k < 3; ++k)
+            s.vcolors.at<float>(v, k) = static_cast<float>(
+                std::min(1.0, base[k] * (0.22 + 0.78 * diffuse) + 0.3 * specular));
     }
 
     // Scale and centre the projection to fill 86% of the canvas (still a perspective camera:
@@ -174,24 +256,34 @@ inline MeshScene makeDemoScene(cv::Size size = {512, 512}, int approxTriangles =
         s.verts2d.at<float>(v, 0) = static_cast<float>(size.width * 0.5 + scale * (q.x - mid.x));
         s.verts2d.at<float>(v, 1) = static_cast<float>(size.height * 0.5 + scale * (q.y - mid.y));
     }
-
-    // Two triangles per quad of the (along x around) grid, wrapping both ways: a closed tube.
-    // Each is wound counter-clockwise about the outward normal, so with the image's y axis
+    // The faces turn counter-clockwise about the outward normal, so with the image's y axis
     // pointing down, front faces have a negative signed area (clockwise on screen).
-    std::vector<cv::Vec3i> faces;
-    faces.reserve(2 * static_cast<size_t>(nverts));
-    for (int i = 0; i < along; ++i) {
-        for (int j = 0; j < around; ++j) {
-            const int a = i * around + j;
-            const int b = ((i + 1) % along) * around + j;
-            const int c = ((i + 1) % along) * around + (j + 1) % around;
-            const int d = i * around + (j + 1) % around;
-            faces.emplace_back(a, c, b);
-            faces.emplace_back(a, d, c);
-        }
-    }
-    s.faces = cv::Mat(faces, true).reshape(1);  // K x 3 CV_32S
     return s;
+}
+
+/** The demo knot as a 3D mesh for cv::shading::drawMesh3d: a closed tube of radius 0.42 about a
+trefoil knot, centred at the origin (3-fold symmetric about the z axis), fitting in a sphere of
+radius 3.42. About `approxTriangles` triangles (exactly 10,000 for the default), each wound
+counter-clockwise seen from outside, so cv::shading::CULL_BACK drops the hidden half. Colours
+are the same hue running along the knot, unlit; normals are the tube's exact surface normals. */
+inline Mesh3d makeDemoMesh3d(int approxTriangles = 10000)
+{
+    const detail::KnotTube tube = detail::makeKnotTube(approxTriangles);
+    const int nverts = tube.along * tube.around;
+    Mesh3d m;
+    m.verts3d.create(nverts, 3, CV_32F);
+    m.vcolors.create(nverts, 3, CV_32F);
+    m.normals.create(nverts, 3, CV_32F);
+    m.faces = tube.faces;
+    for (int v = 0; v < nverts; ++v) {
+        const cv::Vec3d& radial = tube.radial[static_cast<size_t>(v)];
+        const cv::Vec3d p = tube.centre[static_cast<size_t>(v)] + detail::kTubeRadius * radial;
+        const cv::Vec3d base = detail::palette(static_cast<double>(v / tube.around) / tube.along);
+        *m.verts3d.ptr<cv::Vec3f>(v) = p;  // an L x 3 CV_32F row is one Vec3f
+        *m.vcolors.ptr<cv::Vec3f>(v) = base;
+        *m.normals.ptr<cv::Vec3f>(v) = radial;
+    }
+    return m;
 }
 
 /** Loads a mesh from an OpenCV FileStorage file (.yml/.yaml/.json, optionally .gz) holding the
@@ -199,22 +291,38 @@ matrices `verts2d`, `faces`, `vcolors` and `depth`. Throws cv::Exception naming 
 missing or malformed key. */
 inline MeshScene loadScene(const std::string& path)
 {
-    if (!std::ifstream(path))  // checked first for a clear message (FileStorage logs its own)
-        CV_Error(cv::Error::StsError, cv::format("loadScene: cannot read '%s'", path.c_str()));
-    cv::FileStorage fs(path, cv::FileStorage::READ);
-    if (!fs.isOpened())
-        CV_Error(cv::Error::StsError,
-                 cv::format("loadScene: cannot open '%s' as an OpenCV YAML/JSON file", path.c_str()));
+    const detail::MeshFile f =
+        detail::openMeshFile(path, "loadScene", "verts2d, faces, vcolors and depth");
     MeshScene s;
-    s.verts2d = detail::readMatrix(fs, path, "verts2d", 2, CV_32F);
-    s.faces = detail::readMatrix(fs, path, "faces", 3, CV_32S);
-    s.vcolors = detail::readMatrix(fs, path, "vcolors", 3, CV_32F);
-    s.depth = detail::readMatrix(fs, path, "depth", 1, CV_32F);
+    s.verts2d = detail::readMatrix(f, "verts2d", 2, CV_32F);
+    s.faces = detail::readMatrix(f, "faces", 3, CV_32S);
+    s.vcolors = detail::readMatrix(f, "vcolors", 3, CV_32F);
+    s.depth = detail::readMatrix(f, "depth", 1, CV_32F);
     if (s.vcolors.rows != s.verts2d.rows || s.depth.rows != s.verts2d.rows)
         CV_Error(cv::Error::StsUnmatchedSizes,
                  cv::format("loadScene: '%s': verts2d has %d rows but vcolors %d and depth %d",
                             path.c_str(), s.verts2d.rows, s.vcolors.rows, s.depth.rows));
     return s;
+}
+
+/** Loads a 3D mesh from an OpenCV FileStorage file holding `verts3d` (L x 3), `faces` (K x 3),
+`vcolors` (L x 3, RGB in [0, 1]) and optionally `normals` (L x 3; absent: drawMesh3d computes
+them). Throws cv::Exception naming the file and the missing or malformed key. */
+inline Mesh3d loadMesh3d(const std::string& path)
+{
+    const detail::MeshFile f = detail::openMeshFile(
+        path, "loadMesh3d", "verts3d, faces and vcolors, optionally normals");
+    Mesh3d m;
+    m.verts3d = detail::readMatrix(f, "verts3d", 3, CV_32F);
+    m.faces = detail::readMatrix(f, "faces", 3, CV_32S);
+    m.vcolors = detail::readMatrix(f, "vcolors", 3, CV_32F);
+    m.normals = detail::readMatrix(f, "normals", 3, CV_32F, /*required=*/false);
+    const int normalRows = m.normals.empty() ? m.verts3d.rows : m.normals.rows;
+    if (m.vcolors.rows != m.verts3d.rows || normalRows != m.verts3d.rows)
+        CV_Error(cv::Error::StsUnmatchedSizes,
+                 cv::format("loadMesh3d: '%s': verts3d has %d rows but vcolors %d and normals %d",
+                            path.c_str(), m.verts3d.rows, m.vcolors.rows, normalRows));
+    return m;
 }
 
 /** True when a window can be shown: a display is there (X11 or Wayland; always on Windows and

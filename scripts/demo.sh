@@ -10,3 +10,5 @@ mkdir -p out
 ./build/samples/demo_flat --out out/demo_flat.png "$@"
 ./build/samples/demo_gouraud --out out/demo_gouraud.png "$@"
 ./build/samples/fillpoly_coverage --out out/fillpoly_coverage.png "$@"
+./build/samples/demo_lighting --out out/demo_lighting.png "$@"
+./build/samples/pose_overlay --out out/pose_overlay.png "$@"

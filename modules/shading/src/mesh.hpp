@@ -363,6 +363,7 @@ struct MeshWorkspace {
 template <class ShaderType>
 struct VertexColorShaders {
     using Shader = ShaderType;
+    static constexpr bool kDeferrable = false;
     const Vec3d* colors;  //!< one per vertex
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&colors[vertex]); }
@@ -374,19 +375,32 @@ struct VertexColorShaders {
     }
 };
 
+/** How drawMeshInBands treats a mesh beyond the painter's order. */
+struct BandOptions {
+    /** The shaders test each sample against a depth buffer themselves (3D z-buffer): every face
+    is drawn, in face order, so that of equally deep faces the earliest keeps the sample. */
+    bool depthTested = false;
+    /** With depthTested: each band first resolves which face keeps each sample (the shader's
+    resolve(), depth only), then shades only those (shadeKept()): every sample is shaded once,
+    which pays for costly shaders (Phong lighting). */
+    bool deferred = false;
+    //! Painter's order: always front to back (each pixel shaded once), for costly shaders.
+    bool frontToBack = false;
+};
+
 /** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
 order), each face coloured by the shader `shaders.make(...)` builds for it. With `background`,
-pixels no face covers are set to it (render() needs no separate clear). With `depthTested`, the
-shaders test each sample against a depth buffer themselves (3D z-buffer): every face is drawn,
-in face order, so that of equally deep faces the earliest keeps the sample. */
+pixels no face covers are set to it (render() needs no separate clear). See BandOptions for the
+z-buffer. */
 template <class Shaders, typename T>
 void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
-                     const Vec<T, 3>* background, bool depthTested = false)
+                     const Vec<T, 3>* background, const BandOptions& options = BandOptions())
 {
     using Shader = typename Shaders::Shader;
     const Size size = canvas.size();
     const int faceCount = int(mesh.faces.size());
     const bool byFaceDepth = !mesh.faceDepth.empty();
+    const bool depthTested = options.depthTested;
     const bool byDepth = !depthTested && (!mesh.depth.empty() || byFaceDepth);
     const int bandShift = bandRowsLog2For(canvas, getNumThreads());
     const int bandRows = 1 << bandShift;
@@ -537,6 +551,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         std::vector<uint64_t> scratch;
         AutoBuffer<uchar, 1> tile(0);  // the streamed bands' scratch rows, allocated on first use
         std::vector<std::pair<double, uint64_t>> refineRun;
+        std::vector<int> keptFaces;     // deferred z-buffer: the face keeping each band sample
+        std::vector<uint8_t> keptAny;   // per band entry: whether it kept a sample when drawn
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -602,8 +618,49 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
             const bool closedSurface = 4 * windingMinority >= orderSize &&
                                        bandArea[band] <= kSmallFaceSamples * double(orderSize);
-            if (depthTested ||
-                (overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface)) {
+            if constexpr (Shaders::kDeferrable) {
+                if (depthTested && options.deferred) {
+                    // Resolve, then shade what each face kept. Faces that kept no sample when
+                    // they were drawn are not walked again.
+                    std::vector<int>& kept = keptFaces;
+                    kept.assign(size_t(y1 - y0) * width, -1);
+                    keptAny.assign(orderSize, 0);
+                    for (int pass = 0; pass < 2; pass++)
+                        for (size_t next = orderSize; next > 0;) {
+                            int count = 0;
+                            int slots[kBatch];
+                            for (; next > 0 && count < kBatch; next--)
+                                if (pass == 0 || keptAny[next - 1]) {
+                                    slots[count] = int(next - 1);
+                                    batchFaces[count++] = entryFace(order[next - 1]);
+                                }
+                            const int batchSize = prepareBatch(batchFaces, count);
+                            for (int i = 0, slot = 0; i < batchSize; i++) {
+                                const BatchFace& bf = batch[i];
+                                while (batchFaces[slot] != bf.face)
+                                    slot++;  // faces prepareBatch dropped
+                                walkTriangle(bf.triangle, y0, y1, width,
+                                             [&](int y, int xBegin, int xEnd) {
+                                    int* keptRow = kept.data() + size_t(y - y0) * width;
+                                    if (pass == 0) {
+                                        keptAny[slots[slot]] |=
+                                            bf.shader.resolve(bf.triangle, keptRow, y, xBegin,
+                                                              xEnd, bf.face);
+                                    } else {
+                                        T* row = reinterpret_cast<T*>(canvasData +
+                                                                      size_t(y) * canvasStep);
+                                        bf.shader.shadeKept(bf.triangle, row, keptRow, y, xBegin,
+                                                            xEnd, bf.face);
+                                    }
+                                });
+                            }
+                        }
+                    continue;
+                }
+            }
+            if (depthTested || (!options.frontToBack &&
+                                overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) &&
+                                !closedSurface)) {
                 // Little overdraw: the painter's way is cheaper here. Background first, then
                 // every face back to front, overwriting; no coverage bookkeeping. (Depth-tested
                 // faces come unsorted, so in face order, and the shader decides.) A slice of

@@ -132,6 +132,7 @@ struct ScreenMesh {
 template <typename T, int kAttributes>
 struct SurfaceShaders {
     using Shader = SurfaceShader<T, kAttributes>;
+    static constexpr bool kDeferrable = true;
     const ScreenMesh* screen;
     const DepthTargets* targets;
 
@@ -139,13 +140,14 @@ struct SurfaceShaders {
 
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
     {
-        Shader s{ExactWeights(t), {}, {}, {}, targets, screen->source[face]};
+        Shader s(t, targets, screen->source[face]);
         for (int i = 0; i < 3; i++) {
             const int v = f[order[i]];
             s.invZ[i] = screen->invZ[v];
             for (int k = 0; k < kAttributes; k++)
                 s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
         }
+        s.finishSetup(t);
         if (kAttributes == 0)
             for (int k = 0; k < 3; k++)
                 s.color[k] = toChannel<T>(float(screen->faceColor[face][k]));
@@ -318,19 +320,23 @@ void buildScreenMesh(const Mesh3dInput& in, const Camera& cam, const RenderSetti
 template <typename T>
 void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets)
 {
-    const bool test = targets.test;
+    const Vec<T, 3>* const noBackground = nullptr;
+    BandOptions options;
+    options.depthTested = targets.test;
+    // Per-sample lighting costs far more than walking a face twice: shade each sample once.
+    options.deferred = options.frontToBack = screen.stride == 9;
     switch (screen.stride) {
     case 0:
         drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 0>{&screen, &targets},
-                        static_cast<const Vec<T, 3>*>(nullptr), test);
+                        noBackground, options);
         break;
     case 3:
         drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 3>{&screen, &targets},
-                        static_cast<const Vec<T, 3>*>(nullptr), test);
+                        noBackground, options);
         break;
     default:
         drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 9>{&screen, &targets},
-                        static_cast<const Vec<T, 3>*>(nullptr), test);
+                        noBackground, options);
         break;
     }
 }

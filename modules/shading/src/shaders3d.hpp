@@ -31,6 +31,19 @@ struct Lighting {
 
     bool lit() const { return !lights.empty(); }
 
+    //! v^shininess for v in (0, 1]; whole exponents up to 256 by squaring (std::pow is several
+    //! times slower, and the two differ by a few ulps).
+    double power(double v) const
+    {
+        if (!(shininess == std::floor(shininess) && shininess <= 256))
+            return std::pow(v, shininess);
+        double result = 1;
+        for (unsigned e = unsigned(shininess); e; e >>= 1, v *= v)
+            if (e & 1)
+                result *= v;
+        return result;
+    }
+
     /** The lit colour at world point p with normal n (unit, or zero: ambient only) and colour c,
     both colours in the canvas's units. */
     Vec3d shade(const Vec3d& p, const Vec3d& n, const Vec3d& color) const
@@ -53,7 +66,7 @@ struct Lighting {
             const Vec3d r = n * (2 * nl) - l;
             const double rv = r.dot(v);
             if (rv > 0)
-                specular += light.intensity * (ks * std::pow(rv, shininess));
+                specular += light.intensity * (ks * power(rv));
         }
         Vec3d out;
         for (int k = 0; k < 3; k++)
@@ -79,21 +92,70 @@ struct DepthTargets {
     const Lighting* lighting = nullptr;
 };
 
-/** Shades a triangle of the projected mesh. Per sample: the exact screen-space weights w_i,
-their perspective-correct form q_i = (w_i / z_i) / sum_j (w_j / z_j) and the depth
+/** Shades a triangle of the projected mesh. Per sample: the screen-space weights w_i, their
+perspective-correct form q_i = (w_i / z_i) / sum_j (w_j / z_j) and the depth
 1 / sum_j (w_j / z_j); then the z-buffer test, and the colour:
 - kAttributes 0: a constant colour (flat);
 - 3: the interpolated colour (Gouraud: vertex colours lit or as given);
-- 9: interpolated world position, normal and colour, lit at the sample (Phong). */
+- 9: interpolated world position, normal and colour, lit at the sample (Phong).
+w_i / z_i is affine in screen space: each span starts from the exact weights (ExactWeights) and
+steps by its x-gradient, so a sample's values depend only on the face and its span. */
 template <typename T, int kAttributes>
 struct SurfaceShader {
     ExactWeights weights;
     double invZ[3];                                  //!< 1 / Zc per vertex, canonical order
+    double stepX[3];                                 //!< d(w_i / z_i) / dx
     double attributes[3][kAttributes ? kAttributes : 1];
     T color[3];                                      //!< kAttributes 0: the face's colour
     const DepthTargets* targets;
-    int faceId;
+    int faceId;                                      //!< in the caller's faces
 
+    SurfaceShader(const TriangleSetup& t, const DepthTargets* out, int id)
+        : weights(t), targets(out), faceId(id)
+    {
+    }
+
+    //! Call once invZ is set: the per-pixel steps.
+    void finishSetup(const TriangleSetup& t)
+    {
+        double dw[3];
+        weights.stepX(t, dw);
+        for (int i = 0; i < 3; i++)
+            stepX[i] = dw[i] * invZ[i];
+    }
+
+    //! q_i (unnormalized) at the span's first sample.
+    void startSpan(const TriangleSetup& t, int x, int y, double q[3]) const
+    {
+        weights.at(t, x, y, q[0], q[1], q[2]);
+        for (int i = 0; i < 3; i++)
+            q[i] *= invZ[i];
+    }
+
+    void writeColor(T* pixel, const double q[3], double sum) const
+    {
+        if constexpr (kAttributes == 0) {
+            pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
+        } else {
+            const double inv = 1.0 / sum;
+            double v[kAttributes];
+            for (int k = 0; k < kAttributes; k++)
+                v[k] = (q[0] * attributes[0][k] + q[1] * attributes[1][k] +
+                        q[2] * attributes[2][k]) * inv;
+            if constexpr (kAttributes == 9) {
+                const Vec3d c = targets->lighting->shade(Vec3d(v[0], v[1], v[2]),
+                                                         unitOrZero(Vec3d(v[3], v[4], v[5])),
+                                                         Vec3d(v[6], v[7], v[8]));
+                for (int k = 0; k < 3; k++)
+                    pixel[k] = toChannel<T>(float(c[k]));
+            } else {
+                for (int k = 0; k < 3; k++)
+                    pixel[k] = toChannel<T>(float(v[k]));
+            }
+        }
+    }
+
+    //! Draws the span: depth test (z-buffer), depth, face id and colour.
     void operator()(const TriangleSetup& t, T* row, int y, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
@@ -102,11 +164,11 @@ struct SurfaceShader {
             out.depth ? reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep) : nullptr;
         int* const idRow =
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
-        for (int x = xBegin; x < xEnd; x++) {
-            double w0, w1, w2;
-            weights.at(t, x, y, w0, w1, w2);
-            const double q0 = w0 * invZ[0], q1 = w1 * invZ[1], q2 = w2 * invZ[2];
-            const double sum = q0 + q1 + q2;
+        double q[3];
+        startSpan(t, xBegin, y, q);
+        for (int x = xBegin; x < xEnd;
+             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
+            const double sum = q[0] + q[1] + q[2];
             const float depth = float(1.0 / sum);
             if (out.test && !(depth < depthRow[x]))
                 continue;
@@ -114,26 +176,48 @@ struct SurfaceShader {
                 depthRow[x] = depth;
             if (idRow)
                 idRow[x] = faceId;
-            T* pixel = row + 3 * x;
-            if constexpr (kAttributes == 0) {
-                pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
-            } else {
-                const double inv = 1.0 / sum;
-                double v[kAttributes];
-                for (int k = 0; k < kAttributes; k++)
-                    v[k] = (q0 * attributes[0][k] + q1 * attributes[1][k] +
-                            q2 * attributes[2][k]) * inv;
-                if constexpr (kAttributes == 9) {
-                    const Vec3d c = out.lighting->shade(Vec3d(v[0], v[1], v[2]),
-                                                        unitOrZero(Vec3d(v[3], v[4], v[5])),
-                                                        Vec3d(v[6], v[7], v[8]));
-                    for (int k = 0; k < 3; k++)
-                        pixel[k] = toChannel<T>(float(c[k]));
-                } else {
-                    for (int k = 0; k < 3; k++)
-                        pixel[k] = toChannel<T>(float(v[k]));
-                }
+            writeColor(row + 3 * x, q, sum);
+        }
+    }
+
+    /** Deferred z-buffer, first pass: takes the samples of the span nearer than the buffer
+    (depth written, `kept` set to `face`, the face's index in the drawn mesh). Returns whether
+    it took any. */
+    bool resolve(const TriangleSetup& t, int* kept, int y, int xBegin, int xEnd, int face) const
+    {
+        const DepthTargets& out = *targets;
+        float* const depthRow = reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep);
+        double q[3];
+        startSpan(t, xBegin, y, q);
+        bool any = false;
+        for (int x = xBegin; x < xEnd;
+             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
+            const float depth = float(1.0 / (q[0] + q[1] + q[2]));
+            if (depth < depthRow[x]) {
+                depthRow[x] = depth;
+                kept[x] = face;
+                any = true;
             }
+        }
+        return any;
+    }
+
+    //! Deferred z-buffer, second pass: colours (and ids) the span's samples the face kept.
+    void shadeKept(const TriangleSetup& t, T* row, const int* kept, int y, int xBegin, int xEnd,
+                   int face) const
+    {
+        const DepthTargets& out = *targets;
+        int* const idRow =
+            out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
+        double q[3];
+        startSpan(t, xBegin, y, q);
+        for (int x = xBegin; x < xEnd;
+             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
+            if (kept[x] != face)
+                continue;
+            if (idRow)
+                idRow[x] = faceId;
+            writeColor(row + 3 * x, q, q[0] + q[1] + q[2]);
         }
     }
 };
