@@ -6,6 +6,8 @@
 //  - a call that throws cv::Exception leaves the whole image untouched;
 //  - no call takes longer than a bounded time;
 //  - a single triangle with finite, moderate coordinates equals the brute-force reference.
+// drawMesh3d (function 4) gets fuzzed 3D vertices, camera, settings, normals and depth buffers;
+// a rejected call also leaves the depth buffer untouched, and depths written are >= zNear.
 #include "reference/shading_reference.hpp"
 
 #include <fuzzer/FuzzedDataProvider.h>
@@ -105,7 +107,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     static const bool quiet = [] { cv::setNumThreads(1); return true; }();
     (void)quiet;
     FuzzedDataProvider in(data, size);
-    const int function = in.ConsumeIntegralInRange(0, 3);  // flats, gouraud, drawMesh, render
+    // flats, gouraud, drawMesh, render, drawMesh3d
+    const int function = in.ConsumeIntegralInRange(0, 4);
     static const int kTypes[] = {CV_32FC3, CV_8UC3, CV_32FC3, CV_8UC3, CV_8UC1, CV_64FC3, CV_32FC4};
     const int type = kTypes[in.ConsumeIntegralInRange(0, 6)];
     const int width = in.ConsumeIntegralInRange(0, 40), height = in.ConsumeIntegralInRange(0, 40);
@@ -143,6 +146,53 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
                                                                 : in.ConsumeIntegralInRange(0, 1);
     const cv::Size renderSize(in.ConsumeIntegralInRange(-2, 40), in.ConsumeIntegralInRange(-2, 40));
 
+    // drawMesh3d's own arguments: z from the vertex list's x values shifted forward, a camera
+    // that is usually valid, settings that sometimes are not.
+    std::vector<cv::Vec3d> verts3d;
+    cv::Matx33d K(20, 0, width / 2.0, 0, 20, height / 2.0, 0, 0, 1);
+    cv::Vec3d rvec(0, 0, 0), tvec(0, 0, 0);
+    cv::shading::RenderSettings settings;
+    cv::Mat normals, depthBuffer, faceIds;
+    if (function == 4) {
+        for (const cv::Point2d& p : verts)
+            verts3d.emplace_back(p.x - width / 2.0, p.y - height / 2.0,
+                                 in.ConsumeBool() ? in.ConsumeIntegralInRange(-5, 40) * 0.5
+                                                  : pickCoordinate(in, 8));
+        if (in.ConsumeIntegralInRange(0, 10) == 0)
+            K(in.ConsumeIntegralInRange(0, 2), in.ConsumeIntegralInRange(0, 2)) = pickCoordinate(in, 50);
+        for (int k = 0; k < 3; k++) {
+            rvec[k] = in.ConsumeIntegralInRange(0, 3) == 0 ? pickCoordinate(in, 1) * 0.01 : 0;
+            tvec[k] = in.ConsumeIntegralInRange(0, 3) == 0 ? pickCoordinate(in, 4) : 0;
+        }
+        settings.shadeType = in.ConsumeIntegralInRange(0, 40) == 0 ? in.ConsumeIntegral<int>()
+                                                                   : in.ConsumeIntegralInRange(0, 2);
+        settings.visibility = in.ConsumeIntegralInRange(0, 40) == 0 ? 2 : in.ConsumeIntegralInRange(0, 1);
+        settings.cullMode = in.ConsumeIntegralInRange(0, 40) == 0 ? 3 : in.ConsumeIntegralInRange(0, 2);
+        settings.zNear = in.ConsumeIntegralInRange(0, 20) == 0 ? pickCoordinate(in, 1)
+                                                               : in.ConsumeIntegralInRange(1, 8) * 0.25;
+        settings.ks = in.ConsumeIntegralInRange(0, 40) == 0 ? pickCoordinate(in, 1) : 0.5;
+        settings.shininess = in.ConsumeIntegralInRange(0, 40) == 0 ? pickCoordinate(in, 64)
+                                                                   : in.ConsumeIntegralInRange(0, 64) * 0.5;
+        const int lights = in.ConsumeIntegralInRange(0, 3);
+        for (int i = 0; i < lights; i++)
+            settings.lights.emplace_back(
+                cv::Point3d(pickCoordinate(in, 20), pickCoordinate(in, 20), pickCoordinate(in, 20)),
+                cv::Vec3d(in.ConsumeProbability<double>(), in.ConsumeProbability<double>(), 1));
+        if (in.ConsumeBool()) {
+            normals.create(in.ConsumeIntegralInRange(0, 10) == 0 ? 2 : int(verts3d.size()), 3, CV_64F);
+            for (int i = 0; i < int(normals.total()); i++)
+                normals.at<double>(i) = in.ConsumeIntegralInRange(0, 30) == 0 ? pickCoordinate(in, 1)
+                                                                              : in.ConsumeProbability<double>() - 0.5;
+        }
+        if (in.ConsumeBool()) {
+            const bool wrong = in.ConsumeIntegralInRange(0, 10) == 0;
+            depthBuffer = cv::Mat(height + (wrong ? 1 : 0), width, CV_32FC1);
+            if (!depthBuffer.empty())
+                cv::randu(depthBuffer, 0, 20);
+        }
+    }
+    const cv::Mat depthBefore = depthBuffer.clone();
+
     const auto start = std::chrono::steady_clock::now();
     bool threw = false;
     cv::Mat rendered;
@@ -151,6 +201,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         case 0: cv::shading::flats(canvas, verts, colors); break;
         case 1: cv::shading::gouraud(canvas, verts, colors); break;
         case 2: cv::shading::drawMesh(canvas, verts, faces, colors, depth, shadeType); break;
+        case 4:
+            cv::shading::drawMesh3d(canvas, verts3d, faces, colors, K, rvec, tvec, settings,
+                                    normals, depthBuffer, faceIds);
+            break;
         default:
             cv::shading::render(verts, faces, colors, depth, rendered, shadeType, renderSize);
             if (rendered.size() != renderSize || rendered.type() != CV_32FC3)
@@ -171,7 +225,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             fail("a rejected call changed the image");
         if (!rendered.empty())
             fail("a rejected render produced an image");
+        if (!depthBefore.empty() && cv::norm(depthBuffer, depthBefore, cv::NORM_INF) != 0)
+            fail("a rejected drawMesh3d changed the depth buffer");
+        if (!faceIds.empty())
+            fail("a rejected drawMesh3d produced face ids");
         return 0;
+    }
+    if (function == 4 && !faceIds.empty()) {
+        // Every pixel a face coloured has a depth at or beyond the near plane (in float).
+        for (int y = 0; y < faceIds.rows; y++)
+            for (int x = 0; x < faceIds.cols; x++)
+                if (faceIds.at<int>(y, x) >= 0 && !depthBuffer.empty() &&
+                    !(depthBuffer.at<float>(y, x) >= float(settings.zNear) * (1 - 1e-5f)))
+                    fail("a drawn sample lies in front of the near plane");
     }
     const cv::Mat inner = diff(cv::Rect(kGuard * whole.channels(), kGuard, width * whole.channels(), height));
     if (cv::countNonZero(diff) != cv::countNonZero(inner))
