@@ -381,7 +381,7 @@ struct BandOptions {
     is drawn, in face order, so that of equally deep faces the earliest keeps the sample. */
     bool depthTested = false;
     /** With depthTested: each band first resolves which face keeps each sample (the shader's
-    resolve(), depth only), then shades only those (shadeKept()): every sample is shaded once,
+    resolve(), depth only), then shades each kept sample once (the shaders' shadeKeptRow()),
     which pays for costly shaders (Phong lighting). */
     bool deferred = false;
     //! Painter's order: always front to back (each pixel shaded once), for costly shaders.
@@ -551,8 +551,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         std::vector<uint64_t> scratch;
         AutoBuffer<uchar, 1> tile(0);  // the streamed bands' scratch rows, allocated on first use
         std::vector<std::pair<double, uint64_t>> refineRun;
-        std::vector<int> keptFaces;     // deferred z-buffer: the face keeping each band sample
-        std::vector<uint8_t> keptAny;   // per band entry: whether it kept a sample when drawn
+        // Deferred z-buffer: per band sample, the face keeping it and its weights.
+        std::vector<int> keptFaces;
+        std::vector<float> keptWeights;
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -620,41 +621,33 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                        bandArea[band] <= kSmallFaceSamples * double(orderSize);
             if constexpr (Shaders::kDeferrable) {
                 if (depthTested && options.deferred) {
-                    // Resolve, then shade what each face kept. Faces that kept no sample when
-                    // they were drawn are not walked again.
-                    std::vector<int>& kept = keptFaces;
-                    kept.assign(size_t(y1 - y0) * width, -1);
-                    keptAny.assign(orderSize, 0);
-                    for (int pass = 0; pass < 2; pass++)
-                        for (size_t next = orderSize; next > 0;) {
-                            int count = 0;
-                            int slots[kBatch];
-                            for (; next > 0 && count < kBatch; next--)
-                                if (pass == 0 || keptAny[next - 1]) {
-                                    slots[count] = int(next - 1);
-                                    batchFaces[count++] = entryFace(order[next - 1]);
-                                }
-                            const int batchSize = prepareBatch(batchFaces, count);
-                            for (int i = 0, slot = 0; i < batchSize; i++) {
-                                const BatchFace& bf = batch[i];
-                                while (batchFaces[slot] != bf.face)
-                                    slot++;  // faces prepareBatch dropped
-                                walkTriangle(bf.triangle, y0, y1, width,
-                                             [&](int y, int xBegin, int xEnd) {
-                                    int* keptRow = kept.data() + size_t(y - y0) * width;
-                                    if (pass == 0) {
-                                        keptAny[slots[slot]] |=
-                                            bf.shader.resolve(bf.triangle, keptRow, y, xBegin,
-                                                              xEnd, bf.face);
-                                    } else {
-                                        T* row = reinterpret_cast<T*>(canvasData +
-                                                                      size_t(y) * canvasStep);
-                                        bf.shader.shadeKept(bf.triangle, row, keptRow, y, xBegin,
-                                                            xEnd, bf.face);
-                                    }
-                                });
-                            }
+                    // Resolve: every face in face order, depth only; each sample keeps its
+                    // nearest face and that face's weights. Then each kept sample is shaded,
+                    // row by row, once.
+                    keptFaces.assign(size_t(y1 - y0) * width, -1);
+                    keptWeights.resize(size_t(y1 - y0) * width * 2);
+                    for (size_t next = orderSize; next > 0;) {
+                        int count = 0;
+                        for (; next > 0 && count < kBatch; next--)
+                            batchFaces[count++] = entryFace(order[next - 1]);
+                        const int batchSize = prepareBatch(batchFaces, count);
+                        for (int i = 0; i < batchSize; i++) {
+                            const BatchFace& bf = batch[i];
+                            walkTriangle(bf.triangle, y0, y1, width,
+                                         [&](int y, int xBegin, int xEnd) {
+                                const size_t offset = size_t(y - y0) * width;
+                                bf.shader.resolve(bf.triangle, keptFaces.data() + offset,
+                                                  keptWeights.data() + 2 * offset, y, xBegin,
+                                                  xEnd, bf.face);
+                            });
                         }
+                    }
+                    for (int y = y0; y < y1; y++) {
+                        const size_t offset = size_t(y - y0) * width;
+                        shaders.shadeKeptRow(reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep),
+                                             y, keptFaces.data() + offset,
+                                             keptWeights.data() + 2 * offset, width);
+                    }
                     continue;
                 }
             }

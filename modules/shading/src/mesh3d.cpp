@@ -128,15 +128,25 @@ struct ScreenMesh {
     }
 };
 
+template <typename T>
+void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
+                      const int* kept, const float* weights, int width);
+
 /** The span shaders of the 3D path, built per face from the ScreenMesh. */
 template <typename T, int kAttributes>
 struct SurfaceShaders {
     using Shader = SurfaceShader<T, kAttributes>;
-    static constexpr bool kDeferrable = true;
+    //! Lit per sample: worth resolving visibility first (BandOptions::deferred).
+    static constexpr bool kDeferrable = kAttributes == 9;
     const ScreenMesh* screen;
     const DepthTargets* targets;
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
+
+    void shadeKeptRow(T* row, int y, const int* kept, const float* weights, int width) const
+    {
+        shadeKeptSamples(*screen, *targets, row, y, kept, weights, width);
+    }
 
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
     {
@@ -148,12 +158,81 @@ struct SurfaceShaders {
                 s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
         }
         s.finishSetup(t);
+        for (int i = 0; i < 3; i++) {
+            if (order[i] == 1)
+                s.slotOf1 = i;
+            if (order[i] == 2)
+                s.slotOf2 = i;
+        }
         if (kAttributes == 0)
             for (int k = 0; k < 3; k++)
                 s.color[k] = toChannel<T>(float(screen->faceColor[face][k]));
         return s;
     }
 };
+
+/** Deferred Phong: lights the kept samples of a row (see BandOptions::deferred): the kept face's
+vertex attributes weighted by the kept weights, lit four samples at a time. */
+template <typename T>
+void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
+                  const int* kept, const float* weights, int width)
+{
+    int* const idRow =
+        targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
+    const Lighting& lighting = *targets.lighting;
+    int lastFace = -1;
+    float a[3][9] = {};  // the kept face's vertex attributes
+    T* pixels[4];
+    float values[9][4];
+    int count = 0;
+    auto flush = [&]() {
+#if OPENCV_SHADING_SIMD128
+        for (int i = count; i < 4; i++)
+            for (int k = 0; k < 9; k++)
+                values[k][i] = values[k][0];
+        v_float32x4 v[9];
+        for (int k = 0; k < 9; k++)
+            v[k] = v_load(values[k]);
+        float lit[3][4];
+        lighting.shadeQuad(v, lit);
+        for (int i = 0; i < count; i++)
+            for (int k = 0; k < 3; k++)
+                pixels[i][k] = toChannel<T>(lit[k][i]);
+#else
+        for (int i = 0; i < count; i++) {
+            const Vec3d c = lighting.shade(
+                Vec3d(values[0][i], values[1][i], values[2][i]),
+                unitOrZero(Vec3d(values[3][i], values[4][i], values[5][i])),
+                Vec3d(values[6][i], values[7][i], values[8][i]));
+            for (int k = 0; k < 3; k++)
+                pixels[i][k] = toChannel<T>(float(c[k]));
+        }
+#endif
+        count = 0;
+    };
+    for (int x = 0; x < width; x++) {
+        const int face = kept[x];
+        if (face < 0)
+            continue;
+        if (idRow)
+            idRow[x] = screen.source[face];
+        if (face != lastFace) {
+            const Vec3i& f = screen.mesh.faces[face];
+            for (int i = 0; i < 3; i++)
+                for (int k = 0; k < 9; k++)
+                    a[i][k] = float(screen.attributes[size_t(f[i]) * 9 + k]);
+            lastFace = face;
+        }
+        const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
+        for (int k = 0; k < 9; k++)
+            values[k][count] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
+        pixels[count++] = row + 3 * x;
+        if (count == 4)
+            flush();
+    }
+    if (count)
+        flush();
+}
 
 //! The inputs of drawMesh3d, checked and converted.
 struct Mesh3dInput {

@@ -44,6 +44,78 @@ struct Lighting {
         return result;
     }
 
+#if OPENCV_SHADING_SIMD128
+    /** shade() for four samples in float lanes: v holds position, normal (not normalized) and
+    colour; out[channel][lane] the lit colours in the canvas's units. */
+    void shadeQuad(const v_float32x4 v[9], float out[3][4]) const
+    {
+        const v_float32x4 zero = v_setzero_f32(), one = v_setall_f32(1.f);
+        auto inverseLength = [&](const v_float32x4& x, const v_float32x4& y,
+                                 const v_float32x4& z) {
+            const v_float32x4 length2 = x * x + y * y + z * z;
+            return v_select(length2 > zero, one / v_sqrt(length2), zero);  // zero stays zero
+        };
+        const v_float32x4 px = v[0], py = v[1], pz = v[2];
+        const v_float32x4 invN = inverseLength(v[3], v[4], v[5]);
+        const v_float32x4 nx = v[3] * invN, ny = v[4] * invN, nz = v[5] * invN;
+        v_float32x4 vx = v_setall_f32(float(eye[0])) - px, vy = v_setall_f32(float(eye[1])) - py,
+                    vz = v_setall_f32(float(eye[2])) - pz;
+        const v_float32x4 invV = inverseLength(vx, vy, vz);
+        vx = vx * invV, vy = vy * invV, vz = vz * invV;
+        v_float32x4 diffuse[3], specular[3];
+        for (int k = 0; k < 3; k++) {
+            diffuse[k] = v_setall_f32(float(ambient[k]));
+            specular[k] = zero;
+        }
+        const bool wholePower = shininess == std::floor(shininess) && shininess <= 256;
+        for (const Light& light : lights) {
+            v_float32x4 lx = v_setall_f32(float(light.position[0])) - px;
+            v_float32x4 ly = v_setall_f32(float(light.position[1])) - py;
+            v_float32x4 lz = v_setall_f32(float(light.position[2])) - pz;
+            const v_float32x4 invL = inverseLength(lx, ly, lz);
+            lx = lx * invL, ly = ly * invL, lz = lz * invL;
+            const v_float32x4 nl = nx * lx + ny * ly + nz * lz;
+            const v_float32x4 facing = nl > zero;
+            if (!v_check_any(facing))
+                continue;
+            const v_float32x4 diffuseTerm = v_select(facing, nl * v_setall_f32(float(kd)), zero);
+            const v_float32x4 twoNl = nl + nl;
+            const v_float32x4 rv = (twoNl * nx - lx) * vx + (twoNl * ny - ly) * vy +
+                                   (twoNl * nz - lz) * vz;
+            const v_float32x4 shiny = facing & (rv > zero);
+            v_float32x4 highlight = zero;
+            if (v_check_any(shiny)) {
+                v_float32x4 base = v_select(shiny, rv, zero);
+                if (wholePower) {
+                    v_float32x4 result = one;
+                    for (unsigned e = unsigned(shininess); e; e >>= 1, base = base * base)
+                        if (e & 1)
+                            result = result * base;
+                    highlight = result;
+                } else {
+                    float b[4];
+                    v_store(b, base);
+                    for (float& x : b)
+                        x = x > 0 ? float(std::pow(double(x), shininess)) : 0.f;
+                    highlight = v_load(b);
+                }
+                highlight = v_select(shiny, highlight * v_setall_f32(float(ks)), zero);
+            }
+            for (int k = 0; k < 3; k++) {
+                const v_float32x4 intensity = v_setall_f32(float(light.intensity[k]));
+                diffuse[k] = diffuse[k] + intensity * diffuseTerm;
+                specular[k] = specular[k] + intensity * highlight;
+            }
+        }
+        const v_float32x4 toColor = v_setall_f32(float(1.0 / unit)),
+                          toUnit = v_setall_f32(float(unit));
+        for (int k = 0; k < 3; k++) {
+            const v_float32x4 lit = v[6 + k] * toColor * diffuse[k] + specular[k];
+            v_store(out[k], v_min(v_max(lit, zero), one) * toUnit);
+        }
+    }
+#endif
+
     /** The lit colour at world point p with normal n (unit, or zero: ambient only) and colour c,
     both colours in the canvas's units. */
     Vec3d shade(const Vec3d& p, const Vec3d& n, const Vec3d& color) const
@@ -109,6 +181,7 @@ struct SurfaceShader {
     T color[3];                                      //!< kAttributes 0: the face's colour
     const DepthTargets* targets;
     int faceId;                                      //!< in the caller's faces
+    int slotOf1 = 1, slotOf2 = 2;  //!< canonical slots of the face's own vertices 1 and 2
 
     SurfaceShader(const TriangleSetup& t, const DepthTargets* out, int id)
         : weights(t), targets(out), faceId(id)
@@ -180,44 +253,26 @@ struct SurfaceShader {
         }
     }
 
-    /** Deferred z-buffer, first pass: takes the samples of the span nearer than the buffer
-    (depth written, `kept` set to `face`, the face's index in the drawn mesh). Returns whether
-    it took any. */
-    bool resolve(const TriangleSetup& t, int* kept, int y, int xBegin, int xEnd, int face) const
+    /** Deferred z-buffer, first pass: takes the samples of the span nearer than the buffer:
+    depth written, `kept` set to `face` (its index in the drawn mesh) and `weights` to the
+    perspective-correct weights of its vertices 1 and 2 (in the face's own vertex order). */
+    void resolve(const TriangleSetup& t, int* kept, float* keptWeights, int y, int xBegin,
+                 int xEnd, int face) const
     {
         const DepthTargets& out = *targets;
         float* const depthRow = reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep);
         double q[3];
         startSpan(t, xBegin, y, q);
-        bool any = false;
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const float depth = float(1.0 / (q[0] + q[1] + q[2]));
+            const double inv = 1.0 / (q[0] + q[1] + q[2]);
+            const float depth = float(inv);
             if (depth < depthRow[x]) {
                 depthRow[x] = depth;
                 kept[x] = face;
-                any = true;
+                keptWeights[2 * x] = float(q[slotOf1] * inv);
+                keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
             }
-        }
-        return any;
-    }
-
-    //! Deferred z-buffer, second pass: colours (and ids) the span's samples the face kept.
-    void shadeKept(const TriangleSetup& t, T* row, const int* kept, int y, int xBegin, int xEnd,
-                   int face) const
-    {
-        const DepthTargets& out = *targets;
-        int* const idRow =
-            out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
-        double q[3];
-        startSpan(t, xBegin, y, q);
-        for (int x = xBegin; x < xEnd;
-             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            if (kept[x] != face)
-                continue;
-            if (idRow)
-                idRow[x] = faceId;
-            writeColor(row + 3 * x, q, q[0] + q[1] + q[2]);
         }
     }
 };
