@@ -18,9 +18,12 @@
   2D rules then snap and cover. So a mesh wholly in front of the near plane covers exactly the
   pixels #drawMesh covers for its `cv::projectPoints` image.
 - **Near plane.** Triangles are clipped against `Zc = zNear` in camera space before projection,
-  attributes interpolated linearly in 3D along the cut edges: nothing behind it is drawn.
+  attributes interpolated linearly in 3D along the cut edges: nothing behind it is drawn. A quad
+  left by the cut is split along the diagonal from the cut point that follows the vertex behind,
+  whichever vertex the face lists first.
 - **Depth** of a sample is its camera `Zc` on the triangle, perspective-correct (`1/Zc` is affine
-  in screen space). #VISIBILITY_ZBUFFER draws a sample where its depth is strictly smaller than
+  in screen space, over the snapped triangle that decides coverage, so it may differ from the
+  exact ray depth by what the 1/256 px snap moves; stored as float). #VISIBILITY_ZBUFFER draws a sample where its depth is strictly smaller than
   the buffer's (equal depths: the earlier face in `faces` wins); #VISIBILITY_PAINTER draws faces
   from the largest mean vertex `Zc` to the smallest, ties in `faces` order, without a depth test.
   Either way the image does not depend on the thread count.
