@@ -58,23 +58,26 @@ void forChunks(int count, int chunk, Fn&& fn)
 }
 
 /** Vertex normals (seed 004): the normalized sum of the unit normals of the faces using each
-vertex. Serial: the sums must not depend on the thread count. */
+vertex. Face normals in parallel; the sums in face order, serially, so that they never depend on
+the thread count. */
 void vertexNormalsOf(const std::vector<Vec3d>& verts, const std::vector<Vec3i>& faces,
-                     std::vector<Vec3d>& normals, std::vector<Vec3d>* perFace)
+                     std::vector<Vec3d>& normals, std::vector<Vec3d>& perFace)
 {
+    perFace.resize(faces.size());
+    forChunks(int(faces.size()), 8192, [&](int begin, int end) {
+        for (int i = begin; i < end; i++) {
+            const Vec3i& f = faces[i];
+            perFace[i] = faceNormal(verts[f[0]], verts[f[1]], verts[f[2]]);
+        }
+    });
     normals.assign(verts.size(), Vec3d(0, 0, 0));
-    if (perFace)
-        perFace->resize(faces.size());
-    for (size_t i = 0; i < faces.size(); i++) {
-        const Vec3i& f = faces[i];
-        const Vec3d n = faceNormal(verts[f[0]], verts[f[1]], verts[f[2]]);
-        if (perFace)
-            (*perFace)[i] = n;
+    for (size_t i = 0; i < faces.size(); i++)
         for (int k = 0; k < 3; k++)
-            normals[f[k]] += n;
-    }
-    for (Vec3d& n : normals)
-        n = unitOrZero(n);
+            normals[faces[i][k]] += perFace[i];
+    forChunks(int(normals.size()), 8192, [&](int begin, int end) {
+        for (int i = begin; i < end; i++)
+            normals[i] = unitOrZero(normals[i]);
+    });
 }
 
 void writeRows(const std::vector<Vec3d>& values, OutputArray out)
@@ -237,13 +240,15 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
 //! The inputs of drawMesh3d, checked and converted.
 struct Mesh3dInput {
     std::vector<Vec3d> verts, colors, normals;
+    std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
+    std::vector<Vec3d> camera;       //!< per vertex: camera coordinates (NaN: not finite)
     std::vector<Vec3i> faces;
 };
 
 /** Moves the mesh into the camera frame, culls, clips at zNear and projects: fills `screen`.
 Attributes per vertex (stride): 0 flat, 3 a colour (Gouraud, or unlit), 9 world position, normal
 and colour (lit Phong). */
-void buildScreenMesh(const Mesh3dInput& in, const Camera& cam, const RenderSettings& settings,
+void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& settings,
                      const Lighting& lighting, ScreenMesh& screen)
 {
     const int vertexCount = int(in.verts.size()), faceCount = int(in.faces.size());
@@ -256,7 +261,8 @@ void buildScreenMesh(const Mesh3dInput& in, const Camera& cam, const RenderSetti
     const Vec3d eye = cam.centre();
 
     // Vertices: camera coordinates, validity, the projection of those in front, attributes.
-    std::vector<Vec3d> camera(vertexCount);
+    std::vector<Vec3d>& camera = in.camera;
+    camera.resize(vertexCount);
     std::vector<Point2d>& projected = screen.mesh.vertices;
     projected.resize(vertexCount);
     screen.invZ.resize(vertexCount);
@@ -429,7 +435,7 @@ void computeNormals(InputArray verts3d, InputArray faces, OutputArray vertexNorm
     std::vector<Vec3i> faceList;
     readVectors(verts3d, "verts3d", -1, verts);
     readFaces(faces, "faces", int(verts.size()), faceList);
-    vertexNormalsOf(verts, faceList, normals, faceNormals.needed() ? &perFace : nullptr);
+    vertexNormalsOf(verts, faceList, normals, perFace);
     writeRows(normals, vertexNormals);
     if (faceNormals.needed())
         writeRows(perFace, faceNormals);
@@ -458,7 +464,7 @@ void drawMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray faces
                 CV_Error(Error::StsOutOfRange,
                          format("normals: normal %d is not finite", i));
     } else if (needNormals) {
-        vertexNormalsOf(in.verts, in.faces, in.normals, nullptr);
+        vertexNormalsOf(in.verts, in.faces, in.normals, in.faceNormals);
     }
     const Size size = canvasArr.size();
     const bool depthGiven = !depthBuffer.empty();
