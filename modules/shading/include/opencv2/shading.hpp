@@ -108,5 +108,6 @@ CV_EXPORTS_W void render(InputArray verts2d, InputArray faces, InputArray vcolor
 }  // namespace cv
 
 #include "shading/mesh3d.hpp"
+#include "shading/meshio.hpp"
 
 #endif  // OPENCV_SHADING_HPP
