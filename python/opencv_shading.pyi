@@ -1,0 +1,127 @@
+"""Triangle scan conversion and shading into NumPy images (OpenCV's cv::shading).
+
+Canvases are H x W x 3 float32 (colours usually in [0, 1]) or uint8 arrays, drawn into in place
+(views and slices too); sizes are (width, height) as in cv2.
+"""
+import os
+from typing import Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+SHADE_FLAT: int
+SHADE_GOURAUD: int
+SHADE_PHONG: int
+VISIBILITY_ZBUFFER: int
+VISIBILITY_PAINTER: int
+CULL_NONE: int
+CULL_BACK: int
+CULL_FRONT: int
+
+ArrayLike = npt.ArrayLike
+Canvas = npt.NDArray[Union[np.float32, np.uint8]]
+Vec3 = Union[Sequence[float], npt.NDArray[np.floating]]
+ShadeType = Union[int, str]  # SHADE_* or "flat" / "gouraud" / "phong" (any case)
+
+
+class error(RuntimeError):
+    """A cv::Exception raised by the C++ library; str() is its message (what())."""
+    code: int
+    err: str
+    func: str
+    file: str
+    line: int
+
+
+class PointLight:
+    """A point light: world position, RGB intensity."""
+    position: Tuple[float, float, float]
+    intensity: Tuple[float, float, float]
+
+    def __init__(self, position: Vec3 = (0, 0, 0), intensity: Vec3 = (1, 1, 1)) -> None: ...
+
+
+class RenderSettings:
+    """How drawMesh3d shades and which faces it keeps.
+
+    Defaults: Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit: vertex colours as
+    given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16. `lights` returns a copy:
+    assign a new list to change it.
+    """
+    shadeType: int  # assignable from an int or "flat" / "gouraud" / "phong"
+    visibility: int
+    cullMode: int
+    zNear: float
+    lights: list[PointLight]
+    ambient: Tuple[float, float, float]
+    ka: float
+    kd: float
+    ks: float
+    shininess: float
+
+    def __init__(self, *, shadeType: ShadeType = ..., visibility: int = ...,
+                 cullMode: int = ..., zNear: float = 1e-3, lights: Sequence[PointLight] = (),
+                 ambient: Vec3 = (1, 1, 1), ka: float = 0.2, kd: float = 0.7, ks: float = 0.5,
+                 shininess: float = 16) -> None: ...
+
+
+def flats(canvas: Canvas, vertices: ArrayLike, vcolors: ArrayLike) -> Canvas:
+    """Fills one triangle (3 x 2 vertices) with the mean of its 3 vertex colours, in place.
+    Returns canvas."""
+
+
+def gouraud(canvas: Canvas, vertices: ArrayLike, vcolors: ArrayLike) -> Canvas:
+    """Fills one triangle (3 x 2 vertices) interpolating its 3 vertex colours, in place.
+    Returns canvas."""
+
+
+def drawMesh(canvas: Canvas, verts2d: ArrayLike, faces: ArrayLike, vcolors: ArrayLike,
+             depth: ArrayLike | None = None, shadeType: ShadeType = ...) -> Canvas:
+    """Draws a mesh (L x 2 vertices, K x 3 faces, L x 3 colours, L depths or None) onto canvas
+    in place, in painter's order (largest mean depth first). Returns canvas."""
+
+
+def render(verts2d: ArrayLike, faces: ArrayLike, vcolors: ArrayLike, depth: ArrayLike | None,
+           shadeType: ShadeType = ..., size: Tuple[int, int] = (512, 512),
+           background: float | Sequence[float] = (1, 1, 1)) -> npt.NDArray[np.float32]:
+    """Renders a mesh into a new height x width x 3 float32 image filled with background;
+    size is (width, height)."""
+
+
+def computeNormals(verts3d: ArrayLike, faces: ArrayLike
+                   ) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+    """Returns (vertexNormals L x 3, faceNormals K x 3), float32 unit vectors (zero if
+    degenerate)."""
+
+
+def lookAt(eye: Vec3, target: Vec3, up: Vec3
+           ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Returns (rvec, tvec), 3 x 1 float64 each: the OpenCV pose of a camera at eye looking at
+    target, up appearing up."""
+
+
+def drawMesh3d(canvas: Canvas, verts3d: ArrayLike, faces: ArrayLike, vcolors: ArrayLike,
+               cameraMatrix: ArrayLike, rvec: ArrayLike, tvec: ArrayLike,
+               settings: RenderSettings = ..., normals: ArrayLike | None = None,
+               depthBuffer: npt.NDArray[np.float32] | None = None
+               ) -> Tuple[Canvas, npt.NDArray[np.float32], npt.NDArray[np.int32]]:
+    """Draws a 3D mesh seen by an OpenCV camera into canvas in place. depthBuffer (H x W float32)
+    is tested against and updated in place, or created (+inf) when None. Returns (canvas,
+    depthBuffer, faceIds), faceIds H x W int32 (-1 where no face)."""
+
+
+def loadMesh(filename: str | os.PathLike[str]
+             ) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.int32],
+                        npt.NDArray[np.float32] | None, npt.NDArray[np.float32] | None,
+                        npt.NDArray[np.float32] | None]:
+    """Loads a triangle mesh (assimp formats). Returns (vertices L x 3, faces K x 3, normals,
+    colors, texCoords); the last three None where the file has none."""
+
+
+def saveMesh(filename: str | os.PathLike[str], vertices: ArrayLike, faces: ArrayLike,
+             normals: ArrayLike | None = None, colors: ArrayLike | None = None,
+             texCoords: ArrayLike | None = None) -> None:
+    """Saves a triangle mesh in the format its extension names (.obj, .ply, .stl, .gltf, .glb,
+    .off, ...)."""
