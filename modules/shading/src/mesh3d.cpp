@@ -185,34 +185,7 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
     const Lighting& lighting = *targets.lighting;
     int lastFace = -1;
     float a[3][9] = {};  // the kept face's vertex attributes
-    T* pixels[4];
-    float values[9][4];
-    int count = 0;
-    auto flush = [&]() {
-#if OPENCV_SHADING_SIMD128
-        for (int i = count; i < 4; i++)
-            for (int k = 0; k < 9; k++)
-                values[k][i] = values[k][0];
-        v_float32x4 v[9];
-        for (int k = 0; k < 9; k++)
-            v[k] = v_load(values[k]);
-        float lit[3][4];
-        lighting.shadeQuad(v, lit);
-        for (int i = 0; i < count; i++)
-            for (int k = 0; k < 3; k++)
-                pixels[i][k] = toChannel<T>(lit[k][i]);
-#else
-        for (int i = 0; i < count; i++) {
-            const Vec3d c = lighting.shade(
-                Vec3d(values[0][i], values[1][i], values[2][i]),
-                unitOrZero(Vec3d(values[3][i], values[4][i], values[5][i])),
-                Vec3d(values[6][i], values[7][i], values[8][i]));
-            for (int k = 0; k < 3; k++)
-                pixels[i][k] = toChannel<T>(float(c[k]));
-        }
-#endif
-        count = 0;
-    };
+    LitQuad<T> quad;
     for (int x = 0; x < width; x++) {
         const int face = kept[x];
         if (face < 0)
@@ -227,14 +200,12 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
             lastFace = face;
         }
         const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
+        float v[9];
         for (int k = 0; k < 9; k++)
-            values[k][count] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
-        pixels[count++] = row + 3 * x;
-        if (count == 4)
-            flush();
+            v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
+        quad.add(row + 3 * x, v, lighting);
     }
-    if (count)
-        flush();
+    quad.flush(lighting);
 }
 
 //! The inputs of drawMesh3d, checked and converted.

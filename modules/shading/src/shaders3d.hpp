@@ -154,6 +154,54 @@ inline Vec3d unitOrZero(const Vec3d& v)
     return length > 0 && std::isfinite(length) ? v * (1.0 / length) : Vec3d(0, 0, 0);
 }
 
+/** Samples waiting to be lit together (Phong): their pixels and interpolated position, normal
+and colour. Four at a time in float lanes where SIMD is built, else one by one in double. */
+template <typename T>
+struct LitQuad {
+    T* pixels[4];
+    float values[9][4];
+    int count = 0;
+
+    //! Queues a pixel; v: position, normal (not normalized), colour. Lights when four wait.
+    void add(T* pixel, const float v[9], const Lighting& lighting)
+    {
+        for (int k = 0; k < 9; k++)
+            values[k][count] = v[k];
+        pixels[count++] = pixel;
+        if (count == 4)
+            flush(lighting);
+    }
+
+    void flush(const Lighting& lighting)
+    {
+        if (count == 0)
+            return;
+#if OPENCV_SHADING_SIMD128
+        for (int i = count; i < 4; i++)
+            for (int k = 0; k < 9; k++)
+                values[k][i] = values[k][0];
+        v_float32x4 v[9];
+        for (int k = 0; k < 9; k++)
+            v[k] = v_load(values[k]);
+        float lit[3][4];
+        lighting.shadeQuad(v, lit);
+        for (int i = 0; i < count; i++)
+            for (int k = 0; k < 3; k++)
+                pixels[i][k] = toChannel<T>(lit[k][i]);
+#else
+        for (int i = 0; i < count; i++) {
+            const Vec3d c = lighting.shade(
+                Vec3d(values[0][i], values[1][i], values[2][i]),
+                unitOrZero(Vec3d(values[3][i], values[4][i], values[5][i])),
+                Vec3d(values[6][i], values[7][i], values[8][i]));
+            for (int k = 0; k < 3; k++)
+                pixels[i][k] = toChannel<T>(float(c[k]));
+        }
+#endif
+        count = 0;
+    }
+};
+
 /** What the 3D shaders write besides the canvas, and how they test. */
 struct DepthTargets {
     uchar* depth = nullptr;  //!< CV_32FC1 rows, canvas-sized; null: not written
@@ -205,26 +253,16 @@ struct SurfaceShader {
             q[i] *= invZ[i];
     }
 
+    //! Flat and Gouraud colours (Phong samples go through LitQuad).
     void writeColor(T* pixel, const double q[3], double sum) const
     {
         if constexpr (kAttributes == 0) {
             pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
         } else {
             const double inv = 1.0 / sum;
-            double v[kAttributes];
-            for (int k = 0; k < kAttributes; k++)
-                v[k] = (q[0] * attributes[0][k] + q[1] * attributes[1][k] +
-                        q[2] * attributes[2][k]) * inv;
-            if constexpr (kAttributes == 9) {
-                const Vec3d c = targets->lighting->shade(Vec3d(v[0], v[1], v[2]),
-                                                         unitOrZero(Vec3d(v[3], v[4], v[5])),
-                                                         Vec3d(v[6], v[7], v[8]));
-                for (int k = 0; k < 3; k++)
-                    pixel[k] = toChannel<T>(float(c[k]));
-            } else {
-                for (int k = 0; k < 3; k++)
-                    pixel[k] = toChannel<T>(float(v[k]));
-            }
+            for (int k = 0; k < 3; k++)
+                pixel[k] = toChannel<T>(float((q[0] * attributes[0][k] + q[1] * attributes[1][k] +
+                                               q[2] * attributes[2][k]) * inv));
         }
     }
 
@@ -239,6 +277,7 @@ struct SurfaceShader {
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
+        LitQuad<T> quad;
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double sum = q[0] + q[1] + q[2];
@@ -249,8 +288,18 @@ struct SurfaceShader {
                 depthRow[x] = depth;
             if (idRow)
                 idRow[x] = faceId;
-            writeColor(row + 3 * x, q, sum);
+            if constexpr (kAttributes == 9) {
+                const double inv = 1.0 / sum;
+                float v[9];
+                for (int k = 0; k < 9; k++)
+                    v[k] = float((q[0] * attributes[0][k] + q[1] * attributes[1][k] +
+                                  q[2] * attributes[2][k]) * inv);
+                quad.add(row + 3 * x, v, *out.lighting);
+            } else {
+                writeColor(row + 3 * x, q, sum);
+            }
         }
+        quad.flush(*out.lighting);
     }
 
     /** Deferred z-buffer, first pass: takes the samples of the span nearer than the buffer:
