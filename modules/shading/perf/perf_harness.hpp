@@ -62,16 +62,12 @@ inline void renderScene(const Scene& sc, int shade, cv::Mat& img)
                         cv::Scalar::all(1.0));
 }
 
-/** Registers METHOD/SCENE[/SHADE]/threads:N, which sets OpenCV's thread count to `threads` and
-calls `draw(canvas)` once per iteration (the same canvas each time). `shade` may be null. */
-inline void addBenchmark(const std::string& method, const Scene& sc, const char* shade,
-                         int threads, std::function<void(cv::Mat&)> draw)
+/** Registers the benchmark `name` (ending in /threads:N), which sets OpenCV's thread count to
+`threads` and calls `draw(canvas)` once per iteration (the same canvas each time), with the
+counters `triangles` and `pixels`. */
+inline void addNamedBenchmark(const std::string& name, double triangles, double pixels,
+                              int threads, std::function<void(cv::Mat&)> draw)
 {
-    std::string name = method + "/" + sc.name;
-    if (shade != nullptr)
-        name += std::string("/") + shade;
-    name += "/threads:" + std::to_string(threads);
-    const double triangles = sc.mesh.faces.rows, pixels = double(sc.size.area());
     benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
         ThreadCount scope(threads);
         cv::Mat canvas;
@@ -83,6 +79,18 @@ inline void addBenchmark(const std::string& method, const Scene& sc, const char*
         state.counters["triangles"] = triangles;
         state.counters["pixels"] = pixels;
     })->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+/** Registers METHOD/SCENE[/SHADE]/threads:N (addNamedBenchmark). `shade` may be null. */
+inline void addBenchmark(const std::string& method, const Scene& sc, const char* shade,
+                         int threads, std::function<void(cv::Mat&)> draw)
+{
+    std::string name = method + "/" + sc.name;
+    if (shade != nullptr)
+        name += std::string("/") + shade;
+    name += "/threads:" + std::to_string(threads);
+    addNamedBenchmark(name, sc.mesh.faces.rows, double(sc.size.area()), threads,
+                      std::move(draw));
 }
 
 /** Registers machine/arithmetic/threads:N: a fixed amount of arithmetic (floating-point and

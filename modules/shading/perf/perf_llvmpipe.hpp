@@ -50,7 +50,8 @@ public:
     //! Draws `sc` into `canvas` (made `sc.size` CV_32FC4 and bound to the context if needed).
     void render(const Scene& sc, bool gouraud, cv::Mat& canvas)
     {
-        if (canvas.size() != sc.size || canvas.type() != CV_32FC4 || canvas.data != bound_)
+        if (canvas.size() != sc.size || canvas.type() != CV_32FC4 || canvas.data != bound_ ||
+            OSMesaGetCurrentContext() != context_)  // the 3D benchmarks have their own contexts
             bind(canvas, sc.size);
         glClear(GL_COLOR_BUFFER_BIT);
         const MeshScene& m = sc.mesh;

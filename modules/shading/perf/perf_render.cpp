@@ -14,13 +14,20 @@
 // described in perf_harness.hpp. The context also says whether the plain rasterizer paints the
 // same image as render (it should: 0 pixels differ), checked on the 512 scenes.
 //
+// The 3D benchmarks (perf_render3d.hpp, perf_llvmpipe3d.hpp): cv::shading::drawMesh3d and
+// llvmpipe with the same lighting in GLSL on lit 3D meshes (knot3d512, torus3d2048), flat,
+// Gouraud and Phong, z-buffer and painter's; their scene names contain "3d".
+//
 // Run it through run_benchmarks.sh (medians of repetitions, JSON, report.py), or directly, e.g.
 //   opencv_shading_perf --benchmark_filter='render/grid512' --benchmark_repetitions=5
+//   opencv_shading_perf --benchmark_filter=3d            # the 3D cells only
 
 #include "perf_baselines.hpp"
 #include "perf_harness.hpp"
+#include "perf_render3d.hpp"
 #ifdef OPENCV_SHADING_PERF_LLVMPIPE
 #include "perf_llvmpipe.hpp"
+#include "perf_llvmpipe3d.hpp"
 #endif
 
 #include <opencv2/core.hpp>
@@ -82,9 +89,13 @@ int main(int argc, char** argv)
                 }));
         addScene(sc, allThreads);
     }
+    const std::vector<Scene3d> scenes3d = benchmarkScenes3d();  // outlives the benchmarks
+    for (const Scene3d& sc : scenes3d)
+        addScene3d(sc, allThreads);
 
 #ifdef OPENCV_SHADING_PERF_LLVMPIPE
     addLlvmpipeBenchmarks(scenes);
+    addLlvmpipe3dBenchmarks(scenes3d);
 #endif
 
     benchmark::RunSpecifiedBenchmarks();

@@ -11,12 +11,20 @@
 //
 // grid, sphere and random are built in unit coordinates ([0, 1]^2 is the canvas) and scaled to
 // the canvas, so every size shows the same picture.
+//
+// The 3D scenes (Scene3d, for cv::shading::drawMesh3d) are closed meshes in world coordinates,
+// seen by a cv::shading::lookAt camera and lit by three coloured point lights:
+//
+//   knot3d    the samples' torus knot as a 3D tube (shading_samples::makeDemoMesh3d): 10,000
+//             triangles, 512 x 512
+//   torus3d   a torus of 1000 x 500 quads: 1,000,000 triangles, 2048 x 2048
 #ifndef OPENCV_SHADING_PERF_SCENES_HPP
 #define OPENCV_SHADING_PERF_SCENES_HPP
 
 #include "../../../samples/demo_scene.hpp"
 
 #include <opencv2/core.hpp>
+#include <opencv2/shading.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -206,6 +214,117 @@ inline Scene makeScene(const std::string& kind, int side)
     else
         throw std::invalid_argument("makeScene: unknown scene '" + kind + "'");
     sc.mesh.verts2d *= side;  // unit square -> canvas
+    return sc;
+}
+
+using shading_samples::Mesh3d;
+
+namespace detail {
+
+// Rotation matrix of a Rodrigues vector (cv::Rodrigues is in calib3d, which we do not link).
+inline cv::Matx33d rodrigues(const cv::Vec3d& r)
+{
+    const double angle = cv::norm(r);
+    if (angle < 1e-15)
+        return cv::Matx33d::eye();
+    const cv::Vec3d k = r / angle;
+    const cv::Matx33d cross(0, -k[2], k[1], k[2], 0, -k[0], -k[1], k[0], 0);
+    return cv::Matx33d::eye() + std::sin(angle) * cross +
+           (1 - std::cos(angle)) * (cross * cross);
+}
+
+}  // namespace detail
+
+/** A torus about the z axis (radii 2 and 0.8): `along` quads around the axis by `around` around
+the tube, 1,000,000 triangles by default, wound counter-clockwise seen from outside, with exact
+unit normals. Colours: hue bands around the axis, tinted by the angle around the tube. */
+inline Mesh3d makeTorusMesh3d(int along = 1000, int around = 500)
+{
+    const double major = 2.0, minor = 0.8;
+    Mesh3d m;
+    m.verts3d.create(along * around, 3, CV_32F);
+    m.vcolors.create(along * around, 3, CV_32F);
+    m.normals.create(along * around, 3, CV_32F);
+    for (int i = 0; i < along; ++i) {
+        const double u = 2.0 * CV_PI * i / along;
+        for (int j = 0; j < around; ++j) {
+            const double v = 2.0 * CV_PI * j / around;
+            const cv::Vec3d n(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+            const cv::Vec3d p = major * cv::Vec3d(std::cos(u), std::sin(u), 0) + minor * n;
+            const int k = i * around + j;
+            m.verts3d.at<cv::Vec3f>(k) = cv::Vec3f(p);
+            m.normals.at<cv::Vec3f>(k) = cv::Vec3f(n);
+            m.vcolors.at<cv::Vec3f>(k) = detail::hue(3.0 * u / (2.0 * CV_PI) +
+                                                     0.15 * std::cos(v));
+        }
+    }
+    // Quad (a, b, c, d) = (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1): d/du x d/dv points
+    // out, so (a, b, c) and (a, c, d) turn counter-clockwise seen from outside.
+    m.faces.create(2 * along * around, 3, CV_32S);
+    int* f = m.faces.ptr<int>();
+    for (int i = 0; i < along; ++i) {
+        for (int j = 0; j < around; ++j) {
+            const int i1 = (i + 1) % along, j1 = (j + 1) % around;
+            const int a = i * around + j, b = i1 * around + j, c = i1 * around + j1,
+                      d = i * around + j1;
+            const int tri[6] = {a, b, c, a, c, d};
+            f = std::copy(tri, tri + 6, f);
+        }
+    }
+    return m;
+}
+
+/** A 3D scene: mesh, camera, lights and material. `settings` holds the lights and material
+(ka 0.2, kd 0.7, ks 0.5, shininess 16, ambient 1); benchmarks set its shading and visibility. */
+struct Scene3d {
+    std::string name;          //!< kind, "3d" and size, e.g. "knot3d512"
+    cv::Size size;             //!< canvas size
+    Mesh3d mesh;               //!< with its exact unit vertex normals
+    cv::Matx33d cameraMatrix;  //!< fx = fy = side, principal point at the centre
+    cv::Mat rvec, tvec;        //!< from cv::shading::lookAt
+    cv::Matx33d rotation;      //!< R of rvec: world to camera, Xc = R Xw + t
+    cv::Vec3d eye;             //!< camera centre, world coordinates
+    cv::shading::RenderSettings settings;
+};
+
+/** The 3D scene `kind` ("knot3d" or "torus3d") on a `side` x `side` canvas. */
+inline Scene3d makeScene3d(const std::string& kind, int side)
+{
+    Scene3d sc;
+    sc.name = kind + std::to_string(side);
+    sc.size = cv::Size(side, side);
+    double scale;  // the mesh's extent: the camera and lights are placed relative to it
+    cv::Vec3d up;
+    if (kind == "knot3d") {
+        sc.mesh = shading_samples::makeDemoMesh3d();  // 10,000 triangles
+        scale = 3.42;
+        sc.eye = cv::Vec3d(2.4, -5.0, 7.2);  // a 3/4 view from above the knot's plane
+        up = cv::Vec3d(0, 1, 0);
+    } else if (kind == "torus3d") {
+        sc.mesh = makeTorusMesh3d();
+        scale = 2.8;
+        sc.eye = cv::Vec3d(0.8, -5.6, 4.2);  // the hole and the far side show
+        up = cv::Vec3d(0, 0, 1);
+    } else {
+        throw std::invalid_argument("makeScene3d: unknown scene '" + kind + "'");
+    }
+    // fx = fy = side: a 53-degree field of view. Pixel centres are integers: centre (side-1)/2.
+    const double f = side, c = 0.5 * (side - 1);
+    sc.cameraMatrix = cv::Matx33d(f, 0, c, 0, f, c, 0, 0, 1);
+    cv::shading::lookAt(cv::Point3d(sc.eye), cv::Point3d(0, 0, 0), up, sc.rvec, sc.tvec);
+    sc.rotation = detail::rodrigues(cv::Vec3d(sc.rvec.ptr<double>()));
+
+    cv::shading::RenderSettings& s = sc.settings;
+    s.zNear = 1.0;  // every vertex is farther; the GL peer's near plane too
+    s.ka = 0.2;
+    s.kd = 0.7;
+    s.ks = 0.5;
+    s.shininess = 16;
+    s.ambient = cv::Vec3d(1, 1, 1);
+    // Warm key light upper left, cool fill from the right, reddish rim light from behind.
+    s.lights = {cv::shading::PointLight(cv::Point3d(-1.8, 1.6, 2.4) * scale, {0.85, 0.7, 0.55}),
+                cv::shading::PointLight(cv::Point3d(2.2, 0.4, 1.2) * scale, {0.3, 0.5, 0.85}),
+                cv::shading::PointLight(cv::Point3d(0.2, 2.5, -1.5) * scale, {0.6, 0.25, 0.3})};
     return sc;
 }
 

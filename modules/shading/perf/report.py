@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 # This file is part of opencv_shading. License: Apache-2.0.
 """Turns Google Benchmark JSON from opencv_shading_perf into a
-Markdown report on stdout: the machine, a table of median times per scene and a table of ratios.
-With --plots DIR and matplotlib (Debian: python3-matplotlib, for /usr/bin/python3) it also writes
-DIR/perf_vs_triangles.png and DIR/perf_vs_canvas.png.
+Markdown report on stdout: the machine, a table of median times per scene and a table of ratios,
+then the 3D section (drawMesh3d and llvmpipe per scene, shading and visibility, the ratios and
+the 3D targets). With --plots DIR and matplotlib (Debian: python3-matplotlib, for
+/usr/bin/python3) it also writes DIR/perf_vs_triangles.png and DIR/perf_vs_canvas.png (2D scenes).
 
 usage: report.py RESULTS.json [MORE.json ...] [--plots DIR]
 
-Benchmark names are METHOD/SCENE[/SHADE]/threads:N[/real_time]. With repetitions the "median"
-aggregates are used; without, the median of the runs of each benchmark.
+Benchmark names are METHOD/SCENE[/SHADE]/threads:N[/real_time], SHADE being SHADING/VISIBILITY
+for the 3D scenes (whose names contain "3d"). With repetitions the "median" aggregates are used;
+without, the median of the runs of each benchmark.
 """
 import argparse
 import json
@@ -19,6 +21,10 @@ import sys
 
 UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 KINDS = ["grid", "sphere", "random", "demo"]  # table order within a canvas size
+SHADES_3D = [("flat", "flat"), ("gouraud", "Gouraud"), ("phong", "Phong")]
+VISIBILITIES_3D = [("zbuffer", "z-buffer"), ("painter", "painter's")]
+TARGET_3D_RATIO = 3.0  # llvmpipe / drawMesh3d at all threads, every 3D cell: at least this
+TARGET_3D_DEMO_MS = 2.0  # the demo knot in Phong with three lights, all threads: under this
 
 
 def load(paths):
@@ -36,7 +42,7 @@ def load(paths):
             threads = next((int(p.split(":")[1]) for p in parts if p.startswith("threads:")), 1)
             parts = [p for p in parts if not p.startswith("threads:")]
             method, scene = parts[0], parts[1]
-            shade = parts[2] if len(parts) > 2 else None
+            shade = "/".join(parts[2:]) or None  # 3D: "phong/zbuffer"
             ms = b["real_time"] * UNIT_MS[b.get("time_unit", "ns")]
             runs.setdefault((method, scene, shade, threads), []).append(ms)
             if "triangles" in b:
@@ -45,10 +51,14 @@ def load(paths):
     return contexts, times, counts
 
 
+def is_3d(scene):
+    return "3d" in scene
+
+
 def scene_order(scenes):
-    """Scenes by canvas size, then grid, sphere, random, demo."""
+    """Scenes by canvas size, then grid, sphere, random, demo (3D ones by size, then name)."""
     def key(name):
-        m = re.match(r"([a-z]+)(\d+)$", name)
+        m = re.match(r"([a-z]+(?:3d)?)(\d+)$", name)
         kind, side = (m.group(1), int(m.group(2))) if m else (name, 0)
         return (side, KINDS.index(kind) if kind in KINDS else len(KINDS), name)
     return sorted(scenes, key=key)
@@ -67,8 +77,11 @@ def fmt_ratio(num, den):
 class Results:
     def __init__(self, contexts, times, counts):
         self.contexts, self.times, self.counts = contexts, times, counts
-        self.scenes = scene_order({k[1] for k in times if k[0] != "machine"})
-        self.all_threads = max((k[3] for k in times if k[0] == "render"), default=1)
+        scenes = {k[1] for k in times if k[0] != "machine"}
+        self.scenes = scene_order(s for s in scenes if not is_3d(s))
+        self.scenes3d = scene_order(s for s in scenes if is_3d(s))
+        self.all_threads = max((k[3] for k in times if k[0] in ("render", "drawMesh3d")),
+                               default=1)
 
     def get(self, method, scene, shade=None, threads=None):
         """Median ms; threads None means the largest thread count measured for the method."""
@@ -109,7 +122,7 @@ def machine_lines(res):
         lines.append(f"- {k}: {v}")
     lines.append("- Times are medians of the repetitions, in milliseconds, wall clock; every "
                  "method clears a float RGB canvas to white and draws all triangles in "
-                 "painter's order")
+                 "painter's order (3D: with a z-buffer, cleared too, or in painter's order)")
     return lines
 
 
@@ -154,6 +167,68 @@ def ratio_table(res):
         row += [fmt_ratio(flat, res.get("clear", s)), fmt_ratio(gour, res.get("clear", s))]
         rows.append(row)
     return rows
+
+
+def time_table_3d(res):
+    """One row per 3D scene, shading and visibility: drawMesh3d at 1 and all threads, llvmpipe,
+    their ratio, and the clears alone."""
+    n, lt = res.all_threads, res.llvmpipe_threads()
+    head = ["scene", "triangles", "shading", "visibility", "drawMesh3d 1 thr",
+            f"drawMesh3d {n} thr"]
+    if lt:
+        head += [f"llvmpipe {lt} thr", f"llvmpipe / drawMesh3d ({n} thr)"]
+    head.append("clear")
+    rows = [head]
+    for s in res.scenes3d:
+        tri = res.counts.get(s, (None, None))[0]
+        for shade, shade_label in SHADES_3D:
+            for vis, vis_label in VISIBILITIES_3D:
+                cell = f"{shade}/{vis}"
+                mine = res.get("drawMesh3d", s, cell, n)
+                row = [s, f"{tri:,}" if tri else "?", shade_label, vis_label,
+                       fmt_ms(res.get("drawMesh3d", s, cell, 1)), fmt_ms(mine)]
+                if lt:
+                    gl = res.get("llvmpipe", s, cell, lt)
+                    row += [fmt_ms(gl), fmt_ratio(gl, mine)]
+                row.append(fmt_ms(res.get("clear", s)))
+                if any(c != "–" for c in row[4:-1]):  # a filtered run: measured cells only
+                    rows.append(row)
+    return rows
+
+
+def targets_3d(res):
+    """Lines on the 3D targets: llvmpipe / drawMesh3d at least 3x on every cell, the demo knot
+    in Phong under 2 ms (all threads). Says met or missed; cells not measured are named."""
+    n, lt = res.all_threads, res.llvmpipe_threads()
+    lines = []
+    ratios = []
+    for s in res.scenes3d:
+        for shade, _ in SHADES_3D:
+            for vis, _ in VISIBILITIES_3D:
+                mine = res.get("drawMesh3d", s, f"{shade}/{vis}", n)
+                gl = res.get("llvmpipe", s, f"{shade}/{vis}", lt) if lt else None
+                if mine is not None and gl is not None:
+                    ratios.append((gl / mine, f"{s} {shade} {vis}"))
+    if ratios:
+        below = [f"{name} {r:.2f}x" for r, name in sorted(ratios) if r < TARGET_3D_RATIO]
+        low, low_name = min(ratios)
+        lines.append(f"- Target llvmpipe / drawMesh3d at least {TARGET_3D_RATIO:g}x at {n} threads "
+                     f"on every 3D cell: lowest {low:.2f}x ({low_name}); "
+                     + ("met" if not below else
+                        f"missed on {len(below)} of {len(ratios)} cells: " + ", ".join(below)))
+    else:
+        lines.append("- Target llvmpipe / drawMesh3d: no llvmpipe 3D cells measured")
+    for s in res.scenes3d:
+        if not s.startswith("knot3d"):
+            continue
+        for vis, vis_label in VISIBILITIES_3D:
+            ms = res.get("drawMesh3d", s, f"phong/{vis}", n)
+            if ms is not None:
+                verdict = "met" if ms < TARGET_3D_DEMO_MS else "missed"
+                lines.append(f"- Target demo knot ({s}) in Phong, three lights, under "
+                             f"{TARGET_3D_DEMO_MS:g} ms at {n} threads, {vis_label}: "
+                             f"{fmt_ms(ms)} ms, {verdict}")
+    return lines
 
 
 def markdown(rows):
@@ -251,15 +326,23 @@ def main():
     args = ap.parse_args()
 
     res = Results(*load(args.json))
-    if not res.scenes:
+    if not res.scenes and not res.scenes3d:
         sys.exit("report.py: no benchmarks in " + ", ".join(args.json))
     print("\n".join(machine_lines(res)))
-    print("\nMedian time (ms):\n")
-    print(markdown(time_table(res)))
-    print(f"\nRatios (time of the baseline / time of render with {res.all_threads} threads; "
-          "above 1: render is faster):\n")
-    print(markdown(ratio_table(res)))
-    if args.plots:
+    if res.scenes:
+        print("\nMedian time (ms):\n")
+        print(markdown(time_table(res)))
+        print(f"\nRatios (time of the baseline / time of render with {res.all_threads} "
+              "threads; above 1: render is faster):\n")
+        print(markdown(ratio_table(res)))
+    if res.scenes3d:
+        print("\n3D: drawMesh3d and llvmpipe (the same mesh, camera and lighting formula in "
+              "GLSL), three point lights; median time (ms), and llvmpipe's time / drawMesh3d's "
+              f"with {res.all_threads} threads (above 1: drawMesh3d is faster):\n")
+        print(markdown(time_table_3d(res)))
+        print()
+        print("\n".join(targets_3d(res)))
+    if args.plots and res.scenes:  # the plots are of the 2D scenes
         for path in plot(res, args.plots):
             print(f"wrote {path}", file=sys.stderr)
 

@@ -2,10 +2,11 @@
 # Builds the benchmarks (Release, -DOPENCV_SHADING_BUILD_PERF=ON) in build-perf/, runs them
 # (medians of 9 repetitions, interleaved at random, JSON into build-perf/results/), then prints
 # the Markdown report and writes the plots to docs/perf/ (report.py). llvmpipe runs in the same
-# program when OSMesa was found (libosmesa6-dev). Takes about eight minutes on 2 cores.
+# program when OSMesa was found (libosmesa6-dev). The 2D scenes take about eight minutes on 2
+# cores, the 3D ones (drawMesh3d, --benchmark_filter=3d) about as long again.
 #
 # usage: modules/shading/perf/run_benchmarks.sh [Google Benchmark flags, e.g.
-#        --benchmark_filter=512 --benchmark_repetitions=3]
+#        --benchmark_filter=512 --benchmark_repetitions=3, or --benchmark_filter=3d: 3D only]
 # environment: BUILD_DIR (default build-perf), JOBS (build jobs, default nproc), PLOTS_DIR
 #              (default docs/perf: a filtered run's plots replace the full ones there)
 set -euo pipefail
