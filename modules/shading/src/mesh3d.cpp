@@ -213,8 +213,12 @@ struct Mesh3dInput {
     std::vector<Vec3d> verts, colors, normals;
     std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
     std::vector<Vec3d> camera;       //!< per vertex: camera coordinates (NaN: not finite)
+    std::vector<Vec3f> faceColors;   //!< per face: lit flat colours
     std::vector<Vec3i> faces;
 };
+
+//! Points lit together (Lighting::shadeMany) from a stack block.
+constexpr int kLightBlock = 64;
 
 /** Moves the mesh into the camera frame, culls, clips at zNear and projects: fills `screen`.
 Attributes per vertex (stride): 0 flat, 3 a colour (Gouraud, or unlit), 9 world position, normal
@@ -239,7 +243,23 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.invZ.resize(vertexCount);
     screen.attributes.resize(size_t(vertexCount) * stride);
     const double nan = std::numeric_limits<double>::quiet_NaN();
+    const bool litVertices = stride == 3 && lit;  // Gouraud: each vertex lit once
     forChunks(vertexCount, 4096, [&](int begin, int end) {
+        if (litVertices)
+            for (int block = begin; block < end; block += kLightBlock) {
+                const int count = std::min(kLightBlock, end - block);
+                float points[kLightBlock * 9], colors[kLightBlock * 3];
+                for (int j = 0; j < count; j++)
+                    for (int k = 0; k < 3; k++) {
+                        points[9 * j + k] = float(in.verts[block + j][k]);
+                        points[9 * j + 3 + k] = float(in.normals[block + j][k]);
+                        points[9 * j + 6 + k] = float(in.colors[block + j][k]);
+                    }
+                lighting.shadeMany(points, colors, count);
+                for (int j = 0; j < count; j++)
+                    for (int k = 0; k < 3; k++)
+                        screen.attributes[size_t(block + j) * 3 + k] = colors[3 * j + k];
+            }
         for (int i = begin; i < end; i++) {
             const Vec3d c = cam.toCamera(in.verts[i]);
             camera[i] = isFinite(c) ? c : Vec3d(nan, nan, nan);
@@ -247,11 +267,8 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             projected[i] = front ? cam.project(c) : Point2d(nan, nan);
             screen.invZ[i] = 1.0 / c[2];
             double* a = screen.attributes.data() + size_t(i) * stride;
-            if (stride == 3) {
-                const Vec3d color = shade == SHADE_FLAT || !lit
-                                        ? in.colors[i]
-                                        : lighting.shade(in.verts[i], in.normals[i], in.colors[i]);
-                std::copy(color.val, color.val + 3, a);
+            if (stride == 3 && !lit) {
+                std::copy(in.colors[i].val, in.colors[i].val + 3, a);
             } else if (stride == 9) {
                 std::copy(in.verts[i].val, in.verts[i].val + 3, a);
                 std::copy(in.normals[i].val, in.normals[i].val + 3, a + 3);
@@ -292,6 +309,40 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         chunkFaces[begin / kChunk + 1] = faces;
         chunkVertices[begin / kChunk + 1] = vertices;
     });
+    // Lit flat faces: each lit once, at its centroid with its face normal and mean colour.
+    std::vector<Vec3f>& faceLit = in.faceColors;
+    if (shade == SHADE_FLAT && lit) {
+        faceLit.resize(faceCount);
+        forChunks(faceCount, kChunk, [&](int begin, int end) {
+            float points[kLightBlock * 9] = {}, colors[kLightBlock * 3];
+            int slots[kLightBlock];
+            int count = 0;
+            auto light = [&]() {
+                lighting.shadeMany(points, colors, count);
+                for (int j = 0; j < count; j++)
+                    faceLit[slots[j]] = Vec3f(colors[3 * j], colors[3 * j + 1], colors[3 * j + 2]);
+                count = 0;
+            };
+            for (int i = begin; i < end; i++) {
+                if (kind[i] == kSkip)
+                    continue;
+                const Vec3i& f = in.faces[i];
+                const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
+                const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
+                const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
+                float* p = points + 9 * count;
+                for (int k = 0; k < 3; k++) {
+                    p[k] = float(centroid[k]);
+                    p[3 + k] = float(n[k]);
+                    p[6 + k] = float((c0[k] + c1[k] + c2[k]) / 3.0);
+                }
+                slots[count++] = i;
+                if (count == kLightBlock)
+                    light();
+            }
+            light();
+        });
+    }
     for (int c = 0; c < chunks; c++) {
         chunkFaces[c + 1] += chunkFaces[c];
         chunkVertices[c + 1] += chunkVertices[c];
@@ -352,13 +403,10 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             Vec3d flat;
             if (shade == SHADE_FLAT) {
                 const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
-                // The mean as the 2D flats() takes it, then lit at the centroid.
-                const Vec3d mean((c0[0] + c1[0] + c2[0]) / 3.0, (c0[1] + c1[1] + c2[1]) / 3.0,
-                                 (c0[2] + c1[2] + c2[2]) / 3.0);
-                const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
-                flat = lit ? lighting.shade((v0 + v1 + v2) * (1.0 / 3.0), faceNormal(v0, v1, v2),
-                                            mean)
-                           : mean;
+                // Unlit: the mean as the 2D flats() takes it.
+                flat = lit ? Vec3d(faceLit[i])
+                           : Vec3d((c0[0] + c1[0] + c2[0]) / 3.0, (c0[1] + c1[1] + c2[1]) / 3.0,
+                                   (c0[2] + c1[2] + c2[2]) / 3.0);
             }
             const double depth =
                 painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
