@@ -5,8 +5,9 @@
 // Documented bound (README, "Hard use"): while drawing a mesh of K faces and L vertices, the
 // library holds at most kBytesPerFace * K + kBytesPerVertex * L bytes (faces crossing several
 // row bands add 8 bytes per extra band), plus a few kilobytes per thread for coverage masks.
-// Buffers of at most 16 MB are kept by the calling thread for its next call; bigger ones are
-// released before the call returns (checked below).
+// Buffers of at most 256 MB are kept by the calling thread for its next call (frames of a big
+// mesh then cost no fresh pages); what a call leaves held stays within the bound, and the next
+// call of the same size allocates nothing more (checked below).
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/shading.hpp>
@@ -83,6 +84,7 @@ TEST(ShadingMemory, TwoMillionFacesStayWithinTheDocumentedBound)
     cv::Mat canvas(1024, 1024, CV_32FC3, cv::Scalar::all(1));
     const long long faceCount = (long long)faces.size(), vertexCount = (long long)verts.size();
     const long long bound = kBytesPerFace * faceCount + kBytesPerVertex * vertexCount + kSlack;
+    const long long start = g_current.load();
     for (int shade : {cv::shading::SHADE_FLAT, cv::shading::SHADE_GOURAUD}) {
         const long long before = g_current.load();
         g_peak = before;
@@ -94,9 +96,13 @@ TEST(ShadingMemory, TwoMillionFacesStayWithinTheDocumentedBound)
         RecordProperty(shade == cv::shading::SHADE_FLAT ? "flat_peak_bytes" : "gouraud_peak_bytes",
                        std::to_string(extra));
         EXPECT_LE(extra, bound);
-        EXPECT_GT(extra, 0);  // the tracking does see the library's buffers
-        // Nothing the size of the mesh outlives the call (OpenCV's thread pool may keep a few
-        // bytes on first use).
-        EXPECT_LE(g_current.load() - before, 64 << 10) << "memory still held after the call";
+        // What outlives the call is the kept workspace: within the bound, and reused.
+        const long long held = g_current.load() - start;
+        EXPECT_LE(held, bound) << "memory held after the call";
+        if (shade == cv::shading::SHADE_FLAT)
+            EXPECT_GT(extra, 0);  // the tracking does see the library's buffers
+        else
+            EXPECT_LE(extra, 4 << 20) << "the second call reallocated its buffers";  // only
+                                                  // its small per-call tables and masks
     }
 }

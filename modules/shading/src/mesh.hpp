@@ -344,7 +344,7 @@ struct MeshWorkspace {
     std::vector<uint64_t> binned;     //!< per face and band it crosses
 
     //! Calls after one that needed more than this reallocate instead of holding it.
-    static constexpr size_t kKeepBytes = size_t(16) << 20;
+    static constexpr size_t kKeepBytes = size_t(256) << 20;
 
     size_t capacityBytes() const
     {
