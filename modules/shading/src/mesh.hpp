@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -317,6 +318,49 @@ inline int paintRowsFor(const Mat& canvas)
     return rowBytes * 32 <= (256 << 10) ? 32 : 16;
 }
 
+/** A band's z-buffer bookkeeping: per sample the face keeping it (-1: the depth buffer's own
+value), and per 64-sample block of a row whether every sample was written by this draw and an
+upper bound of the depths written there. A face whose box lies in full blocks bounded by less
+than its nearest depth is hidden: nothing of it can pass the depth test. */
+class ZBufferBlocks {
+public:
+    void reset(int rows, int width)
+    {
+        width_ = width;
+        wordsPerRow_ = (width + 63) / 64;
+        kept_.assign(size_t(rows) * width, -1);
+        covered_.assign(size_t(rows) * wordsPerRow_, 0);
+        bound_.assign(size_t(rows) * wordsPerRow_, 0.f);
+        if (width & 63)  // samples past the row's end count as written
+            for (int r = 0; r < rows; r++)
+                covered_[size_t(r) * wordsPerRow_ + wordsPerRow_ - 1] = ~uint64_t(0) << (width & 63);
+    }
+
+    int* keptRow(int r) { return kept_.data() + size_t(r) * width_; }
+    uint64_t* coveredRow(int r) { return covered_.data() + size_t(r) * wordsPerRow_; }
+    float* boundRow(int r) { return bound_.data() + size_t(r) * wordsPerRow_; }
+
+    //! Whether rows [r0, r1), columns [c0, c1] are written and all nearer than `nearest`.
+    bool hidden(int r0, int r1, int c0, int c1, float nearest) const
+    {
+        const int w0 = c0 >> 6, w1 = c1 >> 6;
+        for (int r = r0; r < r1; r++) {
+            const uint64_t* covered = covered_.data() + size_t(r) * wordsPerRow_;
+            const float* bound = bound_.data() + size_t(r) * wordsPerRow_;
+            for (int w = w0; w <= w1; w++)
+                if (covered[w] != ~uint64_t(0) || !(bound[w] < nearest))
+                    return false;
+        }
+        return true;
+    }
+
+private:
+    int width_ = 0, wordsPerRow_ = 0;
+    std::vector<int> kept_;
+    std::vector<uint64_t> covered_;
+    std::vector<float> bound_;
+};
+
 /** A mesh as the band pass reads it: normalised and validated at the API edge. */
 struct MeshData {
     std::vector<Point2d> vertices;
@@ -363,7 +407,7 @@ struct MeshWorkspace {
 template <class ShaderType>
 struct VertexColorShaders {
     using Shader = ShaderType;
-    static constexpr bool kDeferrable = false;
+    static constexpr bool kZBuffer = false;  //!< no depth-tested drawing (see ZBufferBlocks)
     const Vec3d* colors;  //!< one per vertex
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&colors[vertex]); }
@@ -375,14 +419,44 @@ struct VertexColorShaders {
     }
 };
 
+/** Build with -DOPENCV_SHADING_STAGE_TIMES=1 to print each mesh draw's stage times (ms) to
+stderr: where the time of a big mesh goes, at any thread count (a measuring aid, off by
+default). */
+#ifndef OPENCV_SHADING_STAGE_TIMES
+#define OPENCV_SHADING_STAGE_TIMES 0
+#endif
+
+class StageTimer {
+public:
+    void mark(const char* stage)
+    {
+#if OPENCV_SHADING_STAGE_TIMES
+        const int64 now = getTickCount();
+        std::fprintf(stderr, "%s %.3f ms%s", stage, double(now - last_) * 1000.0 / getTickFrequency(),
+                     std::strcmp(stage, "bands") == 0 ? "\n" : ", ");
+        last_ = now;
+#else
+        (void)stage;
+#endif
+    }
+
+private:
+#if OPENCV_SHADING_STAGE_TIMES
+    int64 last_ = getTickCount();
+#endif
+};
+
 /** How drawMeshInBands treats a mesh beyond the painter's order. */
 struct BandOptions {
-    /** The shaders test each sample against a depth buffer themselves (3D z-buffer): every face
-    is drawn, in face order, so that of equally deep faces the earliest keeps the sample. */
+    /** 3D z-buffer: a sample takes the face of smallest (depth, face index) that is nearer than
+    the depth buffer's value (what drawing in face order with a strict test gives), whatever
+    order faces come in. Faces come nearest first (their sort key: their nearest vertex), each
+    sample keeping its face (ZBufferBlocks), and a face whose sample box is covered by nearer
+    samples already is skipped before setup. */
     bool depthTested = false;
-    /** With depthTested: each band first resolves which face keeps each sample (the shader's
-    resolve(), depth only), then shades each kept sample once (the shaders' shadeKeptRow()),
-    which pays for costly shaders (Phong lighting). */
+    /** With depthTested: the kept face's weights are stored with each sample and each kept
+    sample is shaded once at the end (the shaders' shadeKeptRow()), which pays for costly
+    shaders (Phong lighting). */
     bool deferred = false;
     //! Painter's order: always front to back (each pixel shaded once), for costly shaders.
     bool frontToBack = false;
@@ -401,12 +475,13 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const int faceCount = int(mesh.faces.size());
     const bool byFaceDepth = !mesh.faceDepth.empty();
     const bool depthTested = options.depthTested;
-    const bool byDepth = !depthTested && (!mesh.depth.empty() || byFaceDepth);
+    const bool byDepth = !mesh.depth.empty() || byFaceDepth;
     const int bandShift = bandRowsLog2For(canvas, getNumThreads());
     const int bandRows = 1 << bandShift;
     const int paintRows = paintRowsFor(canvas);
     const int bandCount = (size.height + bandRows - 1) / bandRows;
 
+    StageTimer timer;
     // Pass 0, parallel over vertices: snap each once (a vertex is shared by ~6 faces).
     const int vertexCount = int(mesh.vertices.size());
     MeshWorkspace& work = MeshWorkspace::ofThisThread();
@@ -419,6 +494,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             snapped[i] = snapToGrid(mesh.vertices[i]);
     });
 
+    timer.mark("snap");
     // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
     // its area; per chunk, the range of the depths (for quantizing them below) and the faces and
     // area each band receives (for binning).
@@ -506,6 +582,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         return byDepth ? quantizeDepth(depths[face], minDepth, depthScale) : uint32_t(0);
     };
 
+    timer.mark("boxes");
     // Pass 2, parallel over the same chunks: the entries binned by band (a counting sort), each
     // band's list in decreasing face order.
     std::vector<size_t> bandStart(bandCount + 1, 0);
@@ -535,6 +612,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         }
     });
 
+    timer.mark("binning");
     // Pass 3, parallel over bands: order the band's faces front to back, then draw them.
     uchar* const canvasData = canvas.data;
     const size_t canvasStep = canvas.step[0];
@@ -551,9 +629,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         std::vector<uint64_t> scratch;
         AutoBuffer<uchar, 1> tile(0);  // the streamed bands' scratch rows, allocated on first use
         std::vector<std::pair<double, uint64_t>> refineRun;
-        // Deferred z-buffer: per band sample, the face keeping it and its weights.
-        std::vector<int> keptFaces;
-        std::vector<float> keptWeights;
+        ZBufferBlocks zbuffer;           // depth-tested drawing: see BandOptions
+        std::vector<float> keptWeights;  // deferred: per band sample, its kept face's weights
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -619,44 +696,55 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
             const bool closedSurface = 4 * windingMinority >= orderSize &&
                                        bandArea[band] <= kSmallFaceSamples * double(orderSize);
-            if constexpr (Shaders::kDeferrable) {
-                if (depthTested && options.deferred) {
-                    // Resolve: every face in face order, depth only; each sample keeps its
-                    // nearest face and that face's weights. Then each kept sample is shaded,
-                    // row by row, once.
-                    keptFaces.assign(size_t(y1 - y0) * width, -1);
-                    keptWeights.resize(size_t(y1 - y0) * width * 2);
-                    for (size_t next = orderSize; next > 0;) {
+            if constexpr (Shaders::kZBuffer) {
+                if (depthTested) {
+                    // Nearest faces first; each tests its samples against (depth, face) kept.
+                    zbuffer.reset(y1 - y0, width);
+                    if (options.deferred)
+                        keptWeights.resize(size_t(y1 - y0) * width * 2);
+                    for (size_t next = 0; next < orderSize;) {
                         int count = 0;
-                        for (; next > 0 && count < kBatch; next--)
-                            batchFaces[count++] = entryFace(order[next - 1]);
+                        for (; next < orderSize && count < kBatch; next++) {
+                            if (next + kBoxPrefetch < orderSize)
+                                __builtin_prefetch(&boxes[entryFace(order[next + kBoxPrefetch])]);
+                            const int face = entryFace(order[next]);
+                            const SampleBox& box = boxes[face];
+                            // Its nearest vertex, less float rounding: no sample is nearer.
+                            const float nearest = float(depths[face]) * (1.f - 1e-6f);
+                            if (!zbuffer.hidden(std::max(box.rowBegin, y0) - y0,
+                                                std::min(box.rowEnd, y1) - y0, box.colFirst,
+                                                box.colLast, nearest))
+                                batchFaces[count++] = face;
+                        }
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
                             const BatchFace& bf = batch[i];
                             walkTriangle(bf.triangle, y0, y1, width,
                                          [&](int y, int xBegin, int xEnd) {
-                                const size_t offset = size_t(y - y0) * width;
-                                bf.shader.resolve(bf.triangle, keptFaces.data() + offset,
-                                                  keptWeights.data() + 2 * offset, y, xBegin,
-                                                  xEnd, bf.face);
+                                const int r = y - y0;
+                                T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                                float* weights = options.deferred
+                                                     ? keptWeights.data() + size_t(r) * width * 2
+                                                     : nullptr;
+                                bf.shader.depthTest(bf.triangle, row, y, xBegin, xEnd, bf.face,
+                                                    zbuffer.keptRow(r), weights,
+                                                    zbuffer.coveredRow(r), zbuffer.boundRow(r));
                             });
                         }
                     }
-                    for (int y = y0; y < y1; y++) {
-                        const size_t offset = size_t(y - y0) * width;
-                        shaders.shadeKeptRow(reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep),
-                                             y, keptFaces.data() + offset,
-                                             keptWeights.data() + 2 * offset, width);
-                    }
+                    if (options.deferred)
+                        for (int y = y0; y < y1; y++)
+                            shaders.shadeKeptRow(
+                                reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep), y,
+                                zbuffer.keptRow(y - y0),
+                                keptWeights.data() + size_t(y - y0) * width * 2, width);
                     continue;
                 }
             }
-            if (depthTested || (!options.frontToBack &&
-                                overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) &&
-                                !closedSurface)) {
+            if (!options.frontToBack &&
+                overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface) {
                 // Little overdraw: the painter's way is cheaper here. Background first, then
-                // every face back to front, overwriting; no coverage bookkeeping. (Depth-tested
-                // faces come unsorted, so in face order, and the shader decides.) A slice of
+                // every face back to front, overwriting; no coverage bookkeeping. A slice of
                 // rows at a time, so that what is overwritten is still in cache. The entries'
                 // sort keys, no longer needed, become the slices each face's box reaches.
                 const bool sliced = y1 - y0 > paintRows;
@@ -783,6 +871,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         if (streamBands)
             streamingStoresDone();
     });
+    timer.mark("bands");
     if (work.capacityBytes() > MeshWorkspace::kKeepBytes)
         work = MeshWorkspace();
 }

@@ -139,16 +139,17 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
 template <typename T, int kAttributes>
 struct SurfaceShaders {
     using Shader = SurfaceShader<T, kAttributes>;
-    //! Lit per sample: worth resolving visibility first (BandOptions::deferred).
-    static constexpr bool kDeferrable = kAttributes == 9;
+    static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
     const ScreenMesh* screen;
     const DepthTargets* targets;
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
 
+    //! Deferred Phong (BandOptions::deferred): lights a row's kept samples.
     void shadeKeptRow(T* row, int y, const int* kept, const float* weights, int width) const
     {
-        shadeKeptSamples(*screen, *targets, row, y, kept, weights, width);
+        if constexpr (kAttributes == 9)
+            shadeKeptSamples(*screen, *targets, row, y, kept, weights, width);
     }
 
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
@@ -350,7 +351,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     const int outFaces = chunkFaces[chunks], outVertices = vertexCount + chunkVertices[chunks];
     screen.mesh.faces.resize(outFaces);
     screen.source.resize(outFaces);
-    screen.mesh.faceDepth.resize(painter ? outFaces : 0);
+    screen.mesh.faceDepth.resize(outFaces);
     screen.faceColor.resize(shade == SHADE_FLAT ? outFaces : 0);
     projected.resize(outVertices);
     screen.invZ.resize(outVertices);
@@ -412,8 +413,13 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
             for (int k = first; k < nextFace; k++) {
                 screen.source[k] = i;
-                if (painter)
-                    screen.mesh.faceDepth[k] = depth;
+                // Painter's: the face's mean depth; z-buffer: the piece's nearest vertex, the
+                // order that lets nearer faces hide farther ones before their setup.
+                const Vec3i& piece = screen.mesh.faces[k];
+                screen.mesh.faceDepth[k] =
+                    painter ? depth
+                            : 1.0 / std::max({screen.invZ[piece[0]], screen.invZ[piece[1]],
+                                              screen.invZ[piece[2]]});
                 if (shade == SHADE_FLAT)
                     screen.faceColor[k] = flat;
             }
@@ -427,7 +433,7 @@ void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& t
     const Vec<T, 3>* const noBackground = nullptr;
     BandOptions options;
     options.depthTested = targets.test;
-    // Per-sample lighting costs far more than walking a face twice: shade each sample once.
+    // Per-sample lighting costs more than the bookkeeping: shade each sample once.
     options.deferred = options.frontToBack = screen.stride == 9;
     switch (screen.stride) {
     case 0:

@@ -333,26 +333,41 @@ struct SurfaceShader {
         quad.flush(*out.lighting);
     }
 
-    /** Deferred z-buffer, first pass: takes the samples of the span nearer than the buffer:
-    depth written, `kept` set to `face` (its index in the drawn mesh) and `weights` to the
-    perspective-correct weights of its vertices 1 and 2 (in the face's own vertex order). */
-    void resolve(const TriangleSetup& t, int* kept, float* keptWeights, int y, int xBegin,
-                 int xEnd, int face) const
+    /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
+    smaller than what the sample keeps (kept face -1: the buffer's own value, depth only), so the
+    faces may come in any order. A taken sample gets its depth, its face in `kept`, the block
+    bookkeeping of ZBufferBlocks, and its colour and id, or with `keptWeights` (deferred) the
+    perspective-correct weights of the face's own vertices 1 and 2 for shading later. */
+    void depthTest(const TriangleSetup& t, T* row, int y, int xBegin, int xEnd, int face,
+                   int* kept, float* keptWeights, uint64_t* covered, float* bound) const
     {
         const DepthTargets& out = *targets;
         float* const depthRow = reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep);
+        int* const idRow =
+            out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const double inv = 1.0 / (q[0] + q[1] + q[2]);
-            const float depth = float(inv);
-            if (depth < depthRow[x]) {
-                depthRow[x] = depth;
-                kept[x] = face;
+            const double sum = q[0] + q[1] + q[2];
+            const float depth = float(1.0 / sum);
+            const float current = depthRow[x];
+            if (!(depth < current || (depth == current && kept[x] > face)))
+                continue;  // (kept -1 never loses a tie: the buffer's value was first)
+            depthRow[x] = depth;
+            kept[x] = face;
+            covered[x >> 6] |= uint64_t(1) << (x & 63);
+            bound[x >> 6] = std::max(bound[x >> 6], depth);
+            if (keptWeights) {
+                const double inv = 1.0 / sum;
                 keptWeights[2 * x] = float(q[slotOf1] * inv);
                 keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
+                continue;
             }
+            if (idRow)
+                idRow[x] = faceId;
+            if constexpr (kAttributes != 9)
+                writeColor(row + 3 * x, q, sum);
         }
     }
 };
