@@ -46,6 +46,9 @@ inline std::vector<Scene> benchmarkScenes()
         for (const char* kind : {"grid", "sphere", "random"})
             scenes.push_back(makeScene(kind, side));
     scenes.push_back(makeScene("demo", 512));
+    // Big meshes of tiny triangles (about 4 pixels a face): a grid and a closed surface.
+    scenes.push_back(makeScene("biggrid", 2048));
+    scenes.push_back(makeScene("bigsphere", 2048));
     return scenes;
 }
 

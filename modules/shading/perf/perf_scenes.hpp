@@ -197,7 +197,8 @@ inline MeshScene makeRandom(int count = 20000, double layers = 13.0, uint64 seed
     return s;
 }
 
-/** The scene `kind` ("grid", "sphere", "random" or "demo") on a `side` x `side` canvas. */
+/** The scene `kind` ("grid", "sphere", "random", "demo", or the million-face "biggrid" and
+"bigsphere") on a `side` x `side` canvas. */
 inline Scene makeScene(const std::string& kind, int side)
 {
     Scene sc{kind + std::to_string(side), cv::Size(side, side), {}};
@@ -207,8 +208,12 @@ inline Scene makeScene(const std::string& kind, int side)
     }
     if (kind == "grid")
         sc.mesh = makeGrid();
+    else if (kind == "biggrid")  // 708 x 708 cells: 1,002,528 faces of 4 pixels at 2048
+        sc.mesh = makeGrid(708);
     else if (kind == "sphere")
         sc.mesh = makeSphere();
+    else if (kind == "bigsphere")  // closed, back faces kept: 1,000,000 faces
+        sc.mesh = makeSphere(1000, 501);
     else if (kind == "random")
         sc.mesh = makeRandom();
     else

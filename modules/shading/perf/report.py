@@ -20,7 +20,8 @@ import statistics
 import sys
 
 UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
-KINDS = ["grid", "sphere", "random", "demo"]  # table order within a canvas size
+# Table order within a canvas size.
+KINDS = ["grid", "sphere", "random", "demo", "biggrid", "bigsphere"]
 SHADES_3D = [("flat", "flat"), ("gouraud", "Gouraud"), ("phong", "Phong")]
 VISIBILITIES_3D = [("zbuffer", "z-buffer"), ("painter", "painter's")]
 TARGET_3D_RATIO = 3.0  # llvmpipe / drawMesh3d at all threads, every 3D cell: at least this
