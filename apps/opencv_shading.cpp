@@ -14,13 +14,13 @@
 #include <opencv2/videoio.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
-#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -138,11 +138,15 @@ std::vector<double> parseNumbers(const std::string& text, size_t count, const st
 
 cv::Size parseSize(const std::string& text)
 {
-    static const std::regex form("([0-9]{1,5})[xX]([0-9]{1,5})");
-    std::smatch m;
-    if (!std::regex_match(text, m, form))
+    // WxH: 1 to 5 digits, x or X, 1 to 5 digits.
+    const size_t x = text.find_first_of("xX");
+    auto digits = [](const std::string& t) {
+        return !t.empty() && t.size() <= 5 &&
+               t.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (x == std::string::npos || !digits(text.substr(0, x)) || !digits(text.substr(x + 1)))
         throw UsageError("--size: expected WxH in pixels (e.g. 1024x768), got '" + text + "'");
-    const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+    const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw UsageError("--size: width and height must be in 1..16384, got '" + text + "'");
     return {w, h};
@@ -168,8 +172,27 @@ bool isFramePattern(const std::string& text)
 
 void checkFramePattern(const std::string& text)
 {
-    static const std::regex form("([^%]|%%)*%0?[0-9]{0,2}d([^%]|%%)*");
-    if (!std::regex_match(text, form))
+    // Exactly one %d, %0Nd or %Nd (N up to two digits); every other % doubled.
+    int conversions = 0;
+    bool valid = true;
+    for (size_t i = 0; i < text.size() && valid; i++) {
+        if (text[i] != '%')
+            continue;
+        if (i + 1 < text.size() && text[i + 1] == '%') {
+            i++;
+            continue;
+        }
+        size_t j = i + 1;
+        if (j < text.size() && text[j] == '0')
+            j++;
+        const size_t width = j;
+        while (j < text.size() && j - width < 2 && std::isdigit(static_cast<unsigned char>(text[j])))
+            j++;
+        valid = j < text.size() && text[j] == 'd';
+        conversions++;
+        i = j;
+    }
+    if (!valid || conversions != 1)
         throw UsageError("--video: '" + text + "' must hold exactly one integer conversion such "
                          "as %d or %03d (and no other %; write %% for a percent sign)");
 }
