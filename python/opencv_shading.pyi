@@ -4,7 +4,7 @@ Canvases are H x W x 3 float32 (colours usually in [0, 1]) or uint8 arrays, draw
 (views and slices too); sizes are (width, height) as in cv2.
 """
 import os
-from typing import Sequence, Tuple, Union
+from typing import Callable, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -125,3 +125,54 @@ def saveMesh(filename: str | os.PathLike[str], vertices: ArrayLike, faces: Array
              texCoords: ArrayLike | None = None) -> None:
     """Saves a triangle mesh in the format its extension names (.obj, .ply, .stl, .gltf, .glb,
     .off, ...)."""
+
+
+# ---- polygons (bind_polygon.cpp) ------------------------------------------------------------
+
+FILL_EVEN_ODD: int
+FILL_NONZERO: int
+
+Contours = Union[Sequence[ArrayLike], npt.NDArray[np.generic]]
+
+
+def fillPolygons(canvas: Canvas, polygons: Contours, color: float | Sequence[float],
+                 fillRule: int = ...) -> Canvas:
+    """Fills polygons (a list of N x 2 contours as cv2.fillPoly takes them, one N x 2 array or a
+    K x N x 2 array; holes and self-intersections allowed) in place, where the winding number
+    around (x + e, y + e^2) is odd (FILL_EVEN_ODD, the default) or nonzero (FILL_NONZERO).
+    Returns canvas."""
+
+
+def triangulatePolygons(polygons: Contours, fillRule: int = ...) -> npt.NDArray[np.int32]:
+    """K x 3 int32 indices into the contours' points concatenated in order: triangles covering
+    exactly what fillPolygons covers, each sample once. Crossing or touching contours raise."""
+
+
+LINE_BRESENHAM: int
+LINE_DDA: int
+
+
+def lines(canvas: Canvas, points: ArrayLike, colors: ArrayLike,
+          algorithm: int = ...) -> Canvas:
+    """Draws segments (points[2i], points[2i + 1]) in place, colours (2N x 3, one per point)
+    interpolated along each. LINE_BRESENHAM (default): endpoints rounded, the pixels of
+    cv2.line(..., 1, cv2.LINE_8); LINE_DDA: 1/256 px endpoints, exact fixed-point DDA.
+    Returns canvas."""
+
+
+def texturedTriangles(canvas: Canvas, verts2d: ArrayLike, faces: ArrayLike,
+                      texCoords: ArrayLike, texture: npt.NDArray[Union[np.float32, np.uint8]],
+                      interpolation: int = ..., borderMode: int = ...) -> Canvas:
+    """Draws triangles textured from an H x W x 3 image, in place, in face order. texCoords:
+    L x 2 texture pixel coordinates (as cv2.remap's maps); interpolation cv2.INTER_NEAREST or
+    cv2.INTER_LINEAR (default); borderMode cv2.BORDER_* (default BORDER_REPLICATE). Each
+    covered pixel equals cv2.remap with float32 maps of the interpolated coordinates.
+    Returns canvas."""
+
+
+def forEachSpan(canvasSize: Tuple[int, int], vertices: ArrayLike,
+                fn: Callable[[int, int, int, Tuple[float, float, float],
+                              Tuple[float, float, float]], None]) -> None:
+    """Calls fn(y, xBegin, xEnd, w, dwdx) per span of covered samples (exactly those flats
+    covers): row y, columns [xBegin, xEnd), barycentric weights w at xBegin for the vertices in
+    the order given, and their change per pixel dwdx."""

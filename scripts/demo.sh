@@ -15,3 +15,5 @@ mkdir -p out
 ./build/samples/fillpoly_coverage --out out/fillpoly_coverage.png "$@"
 ./build/samples/demo_lighting --out out/demo_lighting.png "$@"
 ./build/samples/pose_overlay --out out/pose_overlay.png "$@"
+./build/samples/wireframe --out out/wireframe.png "$@"
+./build/samples/texture_demo --out out/texture_demo.png "$@"

@@ -6,6 +6,7 @@
 //  - a call that throws cv::Exception leaves the whole image untouched;
 //  - no call takes longer than a bounded time;
 //  - a single triangle with finite, moderate coordinates equals the brute-force reference.
+// lines (5) and texturedTriangles (6) get the same vertices, colours and faces.
 // drawMesh3d (function 4) gets fuzzed 3D vertices, camera, settings, normals and depth buffers;
 // a rejected call also leaves the depth buffer untouched, and depths written are >= zNear.
 #include "reference/shading_reference.hpp"
@@ -107,8 +108,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     static const bool quiet = [] { cv::setNumThreads(1); return true; }();
     (void)quiet;
     FuzzedDataProvider in(data, size);
-    // flats, gouraud, drawMesh, render, drawMesh3d
-    const int function = in.ConsumeIntegralInRange(0, 4);
+    // flats, gouraud, drawMesh, render, drawMesh3d, lines, texturedTriangles
+    const int function = in.ConsumeIntegralInRange(0, 6);
     static const int kTypes[] = {CV_32FC3, CV_8UC3, CV_32FC3, CV_8UC3, CV_8UC1, CV_64FC3, CV_32FC4};
     const int type = kTypes[in.ConsumeIntegralInRange(0, 6)];
     const int width = in.ConsumeIntegralInRange(0, 40), height = in.ConsumeIntegralInRange(0, 40);
@@ -193,6 +194,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     }
     const cv::Mat depthBefore = depthBuffer.clone();
 
+    // texturedTriangles: the vertex list doubles as texture coordinates (in and around a small
+    // texture: every border), shadeType as the interpolation, a border mode that may be bad.
+    cv::Mat texture;
+    int borderMode = cv::BORDER_REPLICATE;
+    if (function == 6) {
+        texture.create(in.ConsumeIntegralInRange(0, 6), in.ConsumeIntegralInRange(0, 6),
+                       in.ConsumeBool() ? CV_8UC3 : CV_32FC3);
+        if (!texture.empty())
+            cv::randu(texture, cv::Scalar::all(0),
+                      cv::Scalar::all(texture.depth() == CV_8U ? 255 : 1));
+        borderMode = in.ConsumeIntegralInRange(0, 5);
+    }
+
     const auto start = std::chrono::steady_clock::now();
     bool threw = false;
     cv::Mat rendered;
@@ -204,6 +218,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         case 4:
             cv::shading::drawMesh3d(canvas, verts3d, faces, colors, K, rvec, tvec, settings,
                                     normals, depthBuffer, faceIds);
+            break;
+        case 5: cv::shading::lines(canvas, verts, colors, shadeType); break;
+        case 6:
+            cv::shading::texturedTriangles(canvas, verts, faces, verts, texture, shadeType,
+                                           borderMode);
             break;
         default:
             cv::shading::render(verts, faces, colors, depth, rendered, shadeType, renderSize);

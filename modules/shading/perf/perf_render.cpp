@@ -24,6 +24,8 @@
 
 #include "perf_baselines.hpp"
 #include "perf_harness.hpp"
+#include "perf_line.hpp"
+#include "perf_polygon.hpp"
 #include "perf_render3d.hpp"
 #ifdef OPENCV_SHADING_PERF_LLVMPIPE
 #include "perf_llvmpipe.hpp"
@@ -92,6 +94,9 @@ int main(int argc, char** argv)
     const std::vector<Scene3d> scenes3d = benchmarkScenes3d();  // outlives the benchmarks
     for (const Scene3d& sc : scenes3d)
         addScene3d(sc, allThreads);
+
+    addLineBenchmarks(allThreads);     // lines vs cv::line, textures vs remap (perf_line.hpp)
+    addPolygonBenchmarks(allThreads);  // fillPolygons vs cv::fillPoly (perf_polygon.hpp)
 
 #ifdef OPENCV_SHADING_PERF_LLVMPIPE
     addLlvmpipeBenchmarks(scenes);

@@ -22,6 +22,8 @@ import sys
 UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 # Table order within a canvas size.
 KINDS = ["grid", "sphere", "random", "demo", "biggrid", "bigsphere"]
+# perf_polygon.hpp: fillPolygons against cv::fillPoly, scenes polyN (N vertices).
+POLYGON_METHODS = ("fillPolygons", "fillPoly", "triangulatePolygons", "gluTess")
 SHADES_3D = [("flat", "flat"), ("gouraud", "Gouraud"), ("phong", "Phong")]
 VISIBILITIES_3D = [("zbuffer", "z-buffer"), ("painter", "painter's")]
 TARGET_3D_RATIO = 3.0  # llvmpipe / drawMesh3d at all threads, every 3D cell: at least this
@@ -78,7 +80,9 @@ def fmt_ratio(num, den):
 class Results:
     def __init__(self, contexts, times, counts):
         self.contexts, self.times, self.counts = contexts, times, counts
-        scenes = {k[1] for k in times if k[0] != "machine"}
+        scenes = {k[1] for k in times if k[0] != "machine" and k[0] not in POLYGON_METHODS}
+        self.poly_scenes = sorted({k[1] for k in times if k[0] in POLYGON_METHODS},
+                                  key=lambda s: int(re.sub(r"\D", "", s) or 0))
         self.scenes = scene_order(s for s in scenes if not is_3d(s))
         self.scenes3d = scene_order(s for s in scenes if is_3d(s))
         self.all_threads = max((k[3] for k in times if k[0] in ("render", "drawMesh3d")),
@@ -232,6 +236,21 @@ def targets_3d(res):
     return lines
 
 
+def polygon_table(res):
+    """fillPolygons at 1 and all threads against cv::fillPoly, per polygon size."""
+    n = max((k[3] for k in res.times if k[0] == "fillPolygons"), default=1)
+    rows = [["polygon", "fillPolygons 1 thr", f"fillPolygons {n} thr", "cv::fillPoly",
+             f"fillPoly / fillPolygons {n} thr", "triangulatePolygons", "gluTess"]]
+    for s in res.poly_scenes:
+        ours1, oursn = res.get("fillPolygons", s, None, 1), res.get("fillPolygons", s, None, n)
+        theirs = res.get("fillPoly", s, None, 1)
+        rows.append([f"{int(re.sub(r'[^0-9]', '', s)):,} vertices", fmt_ms(ours1), fmt_ms(oursn),
+                     fmt_ms(theirs), fmt_ratio(theirs, oursn),
+                     fmt_ms(res.get("triangulatePolygons", s, None, 1)),
+                     fmt_ms(res.get("gluTess", s, None, 1))])
+    return rows
+
+
 def markdown(rows):
     out = ["| " + " | ".join(rows[0]) + " |", "|" + "---|" * len(rows[0])]
     out += ["| " + " | ".join(r) + " |" for r in rows[1:]]
@@ -327,7 +346,7 @@ def main():
     args = ap.parse_args()
 
     res = Results(*load(args.json))
-    if not res.scenes and not res.scenes3d:
+    if not res.scenes and not res.scenes3d and not res.poly_scenes:
         sys.exit("report.py: no benchmarks in " + ", ".join(args.json))
     print("\n".join(machine_lines(res)))
     if res.scenes:
@@ -343,6 +362,11 @@ def main():
         print(markdown(time_table_3d(res)))
         print()
         print("\n".join(targets_3d(res)))
+    if res.poly_scenes:
+        print("\nPolygons: fillPolygons against cv::fillPoly (LINE_8, 8 fractional bits) on "
+              "random star-shaped concave polygons, 1024 x 1024 CV_8UC3, and their "
+              "triangulation against GLU's tessellator; median time (ms):\n")
+        print(markdown(polygon_table(res)))
     if args.plots and res.scenes:  # the plots are of the 2D scenes
         for path in plot(res, args.plots):
             print(f"wrote {path}", file=sys.stderr)

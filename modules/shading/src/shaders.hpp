@@ -11,6 +11,7 @@
 #include <opencv2/core/hal/intrin.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -79,6 +80,16 @@ inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
             v_store(p, c0);
     }
 #endif
+    if constexpr (std::is_same<T, uchar>::value) {
+        // Long 8-bit runs (big polygons): 16 pixels, 48 bytes, per fixed-size copy.
+        if (xEnd - xBegin >= 32) {
+            uchar pattern[48];
+            for (int i = 0; i < 48; i += 3)
+                pattern[i] = color[0], pattern[i + 1] = color[1], pattern[i + 2] = color[2];
+            for (; end - p >= 48; p += 48)
+                std::memcpy(p, pattern, 48);
+        }
+    }
     for (; p < end; p += 3) {
         p[0] = color[0];
         p[1] = color[1];

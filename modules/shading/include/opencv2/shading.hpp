@@ -109,5 +109,9 @@ CV_EXPORTS_W void render(InputArray verts2d, InputArray faces, InputArray vcolor
 
 #include "shading/mesh3d.hpp"
 #include "shading/meshio.hpp"
+#include "shading/polygon.hpp"
+#include "shading/line.hpp"
+#include "shading/texture.hpp"
+#include "shading/interpolate.hpp"
 
 #endif  // OPENCV_SHADING_HPP

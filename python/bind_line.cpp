@@ -1,0 +1,104 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+// Python bindings of lines and texturedTriangles (conversion and GIL release only).
+#include <opencv2/imgproc.hpp>
+#include <opencv2/shading.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+
+namespace py = pybind11;
+namespace sh = cv::shading;
+using namespace opencv_shading_py;
+
+void bindLineAndTexture(py::module_& m)
+{
+    m.attr("LINE_BRESENHAM") = static_cast<int>(sh::LINE_BRESENHAM);
+    m.attr("LINE_DDA") = static_cast<int>(sh::LINE_DDA);
+
+    m.def(
+        "lines",
+        [](py::object canvas, const py::object& points, const py::object& colors,
+           int algorithm) {
+            cv::Mat c = wrapCanvas(canvas);
+            Input p = toInput(points, "points"), col = toInput(colors, "colors");
+            {
+                py::gil_scoped_release nogil;
+                sh::lines(c, p.mat, col.mat, algorithm);
+            }
+            return canvas;
+        },
+        py::arg("canvas"), py::arg("points"), py::arg("colors"),
+        py::arg_v("algorithm", static_cast<int>(sh::LINE_BRESENHAM), "LINE_BRESENHAM"),
+        "Draws line segments in place, colours interpolated along each.\n\n"
+        "canvas: H x W x 3 float32 or uint8 array (or a view of one), drawn into.\n"
+        "points: 2N x 2 points; segment i joins points[2i] and points[2i + 1].\n"
+        "colors: 2N x 3 colours, one per point, in the canvas's units.\n"
+        "algorithm: LINE_BRESENHAM (endpoints rounded; the pixels of cv2.line LINE_8) or "
+        "LINE_DDA (1/256 px endpoints, exact fixed-point DDA).\nReturns canvas.");
+
+    m.def(
+        "texturedTriangles",
+        [](py::object canvas, const py::object& verts2d, const py::object& faces,
+           const py::object& texCoords, const py::object& texture, int interpolation,
+           int borderMode) {
+            cv::Mat c = wrapCanvas(canvas);
+            Input v = toInput(verts2d, "verts2d"), f = toInput(faces, "faces", true),
+                  uv = toInput(texCoords, "texCoords");
+            // The texture is read only: uint8 or float32 H x W x 3, any other dtype converted.
+            py::module_ np = py::module_::import("numpy");
+            py::array t = np.attr("asarray")(texture);
+            const bool is8u = isDtype(t, py::dtype::of<uint8_t>());
+            t = np.attr("ascontiguousarray")(t, py::arg("dtype") = is8u ? "uint8" : "float32");
+            if (t.ndim() != 3 || t.shape(2) != 3)
+                throw py::value_error("texture: expected an H x W x 3 array, got " +
+                                      describe(t));
+            const cv::Mat tex(static_cast<int>(t.shape(0)), static_cast<int>(t.shape(1)),
+                              is8u ? CV_8UC3 : CV_32FC3, const_cast<void*>(t.data()));
+            {
+                py::gil_scoped_release nogil;
+                sh::texturedTriangles(c, v.mat, f.mat, uv.mat, tex, interpolation, borderMode);
+            }
+            return canvas;
+        },
+        py::arg("canvas"), py::arg("verts2d"), py::arg("faces"), py::arg("texCoords"),
+        py::arg("texture"), py::arg_v("interpolation", static_cast<int>(cv::INTER_LINEAR),
+                                      "cv2.INTER_LINEAR"),
+        py::arg_v("borderMode", static_cast<int>(cv::BORDER_REPLICATE), "cv2.BORDER_REPLICATE"),
+        "Draws triangles textured from an image, in place, in face order.\n\n"
+        "canvas: H x W x 3 float32 or uint8 array (or a view of one).\n"
+        "verts2d: L x 2 vertices. faces: K x 3 zero-based indices. texCoords: L x 2 texture "
+        "coordinates in texture pixels (as cv2.remap's maps).\n"
+        "texture: H x W x 3 uint8 or float32 image (converted to the canvas's units).\n"
+        "interpolation: cv2.INTER_NEAREST or cv2.INTER_LINEAR. borderMode: cv2.BORDER_*.\n"
+        "Each covered pixel equals cv2.remap of the texture with float32 maps of the "
+        "interpolated coordinates.\nReturns canvas.");
+
+    m.def(
+        "forEachSpan",
+        [](const py::object& canvasSize, const py::object& vertices, const py::function& fn) {
+            if (!PySequence_Check(canvasSize.ptr()) || PySequence_Size(canvasSize.ptr()) != 2)
+                throw py::type_error("canvasSize: expected (width, height), got " +
+                                     py::repr(canvasSize).cast<std::string>());
+            py::sequence wh = py::reinterpret_borrow<py::sequence>(canvasSize);
+            const cv::Size size(wh[0].cast<int>(), wh[1].cast<int>());
+            Input v = toInput(vertices, "vertices");
+            // The callback runs Python: the GIL stays held.
+            sh::forEachSpan(size, v.mat,
+                            [&fn](int y, int xBegin, int xEnd, const cv::Vec3d& w,
+                                  const cv::Vec3d& dwdx) {
+                                fn(y, xBegin, xEnd, py::make_tuple(w[0], w[1], w[2]),
+                                   py::make_tuple(dwdx[0], dwdx[1], dwdx[2]));
+                            });
+        },
+        py::arg("canvasSize"), py::arg("vertices"), py::arg("fn"),
+        "Calls fn(y, xBegin, xEnd, w, dwdx) for each span of samples the triangle covers on a "
+        "canvas of canvasSize (width, height): row y, columns [xBegin, xEnd), the barycentric "
+        "weights w at (xBegin, y) for the vertices in the order given and their change per "
+        "pixel dwdx (tuples of 3 floats). The samples are exactly those flats covers; an "
+        "exception raised by fn propagates.");
+}
