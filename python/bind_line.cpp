@@ -101,4 +101,24 @@ void bindLineAndTexture(py::module_& m)
         "weights w at (xBegin, y) for the vertices in the order given and their change per "
         "pixel dwdx (tuples of 3 floats). The samples are exactly those flats covers; an "
         "exception raised by fn propagates.");
+
+    m.def(
+        "forEachSample",
+        [](const py::object& canvasSize, const py::object& vertices, const py::function& fn) {
+            if (!PySequence_Check(canvasSize.ptr()) || PySequence_Size(canvasSize.ptr()) != 2)
+                throw py::type_error("canvasSize: expected (width, height), got " +
+                                     py::repr(canvasSize).cast<std::string>());
+            py::sequence wh = py::reinterpret_borrow<py::sequence>(canvasSize);
+            const cv::Size size(wh[0].cast<int>(), wh[1].cast<int>());
+            Input v = toInput(vertices, "vertices");
+            // The callback runs Python: the GIL stays held.
+            sh::forEachSample(size, v.mat, [&fn](int x, int y, const cv::Vec3d& w) {
+                fn(x, y, py::make_tuple(w[0], w[1], w[2]));
+            });
+        },
+        py::arg("canvasSize"), py::arg("vertices"), py::arg("fn"),
+        "Calls fn(x, y, w) for each sample the triangle covers on a canvas of canvasSize "
+        "(width, height): pixel (x, y) and its barycentric weights w (a tuple of 3 floats, "
+        "summing to 1) for the vertices in the order given. The samples are exactly those "
+        "flats covers (forEachSpan is faster); an exception raised by fn propagates.");
 }

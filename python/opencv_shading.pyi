@@ -170,6 +170,12 @@ def texturedTriangles(canvas: Canvas, verts2d: ArrayLike, faces: ArrayLike,
     Returns canvas."""
 
 
+def forEachSample(canvasSize: Tuple[int, int], vertices: ArrayLike,
+                  fn: Callable[[int, int, Tuple[float, float, float]], None]) -> None:
+    """Calls fn(x, y, w) per covered sample (exactly those flats covers) with its barycentric
+    weights w for the vertices in the order given."""
+
+
 def forEachSpan(canvasSize: Tuple[int, int], vertices: ArrayLike,
                 fn: Callable[[int, int, int, Tuple[float, float, float],
                               Tuple[float, float, float]], None]) -> None:

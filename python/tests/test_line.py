@@ -74,7 +74,25 @@ def test_for_each_span_matches_flats():
         sh.forEachSpan((40, 32), tri, lambda *a: 1 / 0)
 
 
-@pytest.mark.parametrize("name", ["lines", "texturedTriangles", "forEachSpan"])
+def test_for_each_sample_covers_what_flats_covers_with_exact_weights():
+    tri = np.array([[1.5, 2.25], [30.7, 9.1], [8.2, 27.9]])
+    ref = np.zeros((32, 40, 3), np.float32)
+    sh.flats(ref, tri, np.ones((3, 3)))
+    mine = np.zeros((32, 40), bool)
+    snapped = np.round(tri * 256) / 256  # weights belong to the 1/256 px snapped triangle
+
+    def fn(x, y, w):
+        mine[y, x] = True
+        # The weights reproduce the sample point from the (snapped) vertices.
+        np.testing.assert_allclose(np.dot(w, snapped), (x, y), atol=1e-9)
+
+    sh.forEachSample((40, 32), tri, fn)
+    np.testing.assert_array_equal(mine, ref[:, :, 0] == 1)
+    with pytest.raises(ZeroDivisionError):
+        sh.forEachSample((40, 32), tri, lambda *a: 1 / 0)
+
+
+@pytest.mark.parametrize("name", ["lines", "texturedTriangles", "forEachSpan", "forEachSample"])
 def test_docstrings(name):
     doc = getattr(sh, name).__doc__
     assert doc and name + "(" in doc and len(doc) > 150
