@@ -17,3 +17,4 @@ mkdir -p out
 ./build/samples/pose_overlay --out out/pose_overlay.png "$@"
 ./build/samples/wireframe --out out/wireframe.png "$@"
 ./build/samples/texture_demo --out out/texture_demo.png "$@"
+./build/samples/polygon_fill --out out/polygon_fill.png "$@"
