@@ -16,6 +16,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/shading.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -108,8 +109,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     static const bool quiet = [] { cv::setNumThreads(1); return true; }();
     (void)quiet;
     FuzzedDataProvider in(data, size);
-    // flats, gouraud, drawMesh, render, drawMesh3d, lines, texturedTriangles
-    const int function = in.ConsumeIntegralInRange(0, 6);
+    // flats, gouraud, drawMesh, render, drawMesh3d, lines, texturedTriangles, fillPolygons,
+    // triangulatePolygons
+    const int function = in.ConsumeIntegralInRange(0, 8);
     static const int kTypes[] = {CV_32FC3, CV_8UC3, CV_32FC3, CV_8UC3, CV_8UC1, CV_64FC3, CV_32FC4};
     const int type = kTypes[in.ConsumeIntegralInRange(0, 6)];
     const int width = in.ConsumeIntegralInRange(0, 40), height = in.ConsumeIntegralInRange(0, 40);
@@ -207,6 +209,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         borderMode = in.ConsumeIntegralInRange(0, 5);
     }
 
+    // Polygons: the vertex list cut into up to three contours; shadeType as the fill rule.
+    std::vector<std::vector<cv::Point2d>> contours;
+    if (function >= 7) {
+        const int cuts = in.ConsumeIntegralInRange(0, 2);
+        size_t begin = 0;
+        for (int c = 0; c <= cuts && begin <= verts.size(); c++) {
+            const size_t end = c == cuts ? verts.size()
+                                         : std::min(verts.size(), begin + in.ConsumeIntegralInRange<size_t>(0, 12));
+            contours.emplace_back(verts.begin() + begin, verts.begin() + end);
+            begin = end;
+        }
+    }
+    const cv::Scalar polygonColor = colors.empty() ? cv::Scalar(0.5, 0.25, 0.75)
+                                                   : cv::Scalar(colors[0][0], colors[0][1], colors[0][2]);
+    cv::Mat triangles;
+
     const auto start = std::chrono::steady_clock::now();
     bool threw = false;
     cv::Mat rendered;
@@ -220,6 +238,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
                                     normals, depthBuffer, faceIds);
             break;
         case 5: cv::shading::lines(canvas, verts, colors, shadeType); break;
+        case 7: cv::shading::fillPolygons(canvas, contours, polygonColor, shadeType); break;
+        case 8: {
+            cv::shading::triangulatePolygons(contours, triangles, shadeType);
+            // Indices into the contours' points, concatenated.
+            for (int i = 0; i < int(triangles.total() * triangles.channels()); i++)
+                if (triangles.ptr<int>()[i] < 0 || triangles.ptr<int>()[i] >= int(verts.size()))
+                    fail("triangulatePolygons produced an index outside the points");
+            break;
+        }
         case 6:
             cv::shading::texturedTriangles(canvas, verts, faces, verts, texture, shadeType,
                                            borderMode);
