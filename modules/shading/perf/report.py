@@ -83,7 +83,9 @@ class Results:
         scenes = {k[1] for k in times if k[0] != "machine" and k[0] not in POLYGON_METHODS}
         self.poly_scenes = sorted({k[1] for k in times if k[0] in POLYGON_METHODS},
                                   key=lambda s: int(re.sub(r"\D", "", s) or 0))
-        self.scenes = scene_order(s for s in scenes if not is_3d(s))
+        # 2D triangle scenes: those render drew (the lines/texture cells have scenes of their own).
+        rendered = {k[1] for k in times if k[0] == "render"}
+        self.scenes = scene_order(s for s in scenes if not is_3d(s) and s in rendered)
         self.scenes3d = scene_order(s for s in scenes if is_3d(s))
         self.all_threads = max((k[3] for k in times if k[0] in ("render", "drawMesh3d")),
                                default=1)
