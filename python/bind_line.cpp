@@ -15,6 +15,16 @@ namespace py = pybind11;
 namespace sh = cv::shading;
 using namespace opencv_shading_py;
 
+//! canvasSize (width, height) from any Python sequence of two integers.
+static cv::Size toCanvasSize(const py::object& canvasSize)
+{
+    if (!PySequence_Check(canvasSize.ptr()) || PySequence_Size(canvasSize.ptr()) != 2)
+        throw py::type_error("canvasSize: expected (width, height), got " +
+                             py::repr(canvasSize).cast<std::string>());
+    py::sequence wh = py::reinterpret_borrow<py::sequence>(canvasSize);
+    return cv::Size(wh[0].cast<int>(), wh[1].cast<int>());
+}
+
 void bindLineAndTexture(py::module_& m)
 {
     m.attr("LINE_BRESENHAM") = static_cast<int>(sh::LINE_BRESENHAM);
@@ -81,11 +91,7 @@ void bindLineAndTexture(py::module_& m)
     m.def(
         "forEachSpan",
         [](const py::object& canvasSize, const py::object& vertices, const py::function& fn) {
-            if (!PySequence_Check(canvasSize.ptr()) || PySequence_Size(canvasSize.ptr()) != 2)
-                throw py::type_error("canvasSize: expected (width, height), got " +
-                                     py::repr(canvasSize).cast<std::string>());
-            py::sequence wh = py::reinterpret_borrow<py::sequence>(canvasSize);
-            const cv::Size size(wh[0].cast<int>(), wh[1].cast<int>());
+            const cv::Size size = toCanvasSize(canvasSize);
             Input v = toInput(vertices, "vertices");
             // The callback runs Python: the GIL stays held.
             sh::forEachSpan(size, v.mat,
@@ -105,11 +111,7 @@ void bindLineAndTexture(py::module_& m)
     m.def(
         "forEachSample",
         [](const py::object& canvasSize, const py::object& vertices, const py::function& fn) {
-            if (!PySequence_Check(canvasSize.ptr()) || PySequence_Size(canvasSize.ptr()) != 2)
-                throw py::type_error("canvasSize: expected (width, height), got " +
-                                     py::repr(canvasSize).cast<std::string>());
-            py::sequence wh = py::reinterpret_borrow<py::sequence>(canvasSize);
-            const cv::Size size(wh[0].cast<int>(), wh[1].cast<int>());
+            const cv::Size size = toCanvasSize(canvasSize);
             Input v = toInput(vertices, "vertices");
             // The callback runs Python: the GIL stays held.
             sh::forEachSample(size, v.mat, [&fn](int x, int y, const cv::Vec3d& w) {
