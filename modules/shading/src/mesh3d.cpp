@@ -428,11 +428,12 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
 }
 
 template <typename T>
-void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets)
+void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
+                    bool zbuffer)
 {
     const Vec<T, 3>* const noBackground = nullptr;
     BandOptions options;
-    options.depthTested = targets.test;
+    options.depthTested = zbuffer;
     // Per-sample lighting costs more than the bookkeeping: shade each sample once.
     options.deferred = options.frontToBack = screen.stride == 9;
     switch (screen.stride) {
@@ -540,12 +541,11 @@ void drawMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray faces
     targets.depthStep = depth.empty() ? 0 : depth.step[0];
     targets.ids = ids.empty() ? nullptr : ids.data;
     targets.idsStep = ids.empty() ? 0 : ids.step[0];
-    targets.test = zbuffer;
     targets.lighting = &lighting;
     if (canvas.depth() == CV_8U)
-        drawScreenMesh<uchar>(canvas, screen, targets);
+        drawScreenMesh<uchar>(canvas, screen, targets, zbuffer);
     else
-        drawScreenMesh<float>(canvas, screen, targets);
+        drawScreenMesh<float>(canvas, screen, targets, zbuffer);
     if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
         screen = ScreenMesh();
     if (in.verts.capacity() * sizeof(Vec3d) * 3 > MeshWorkspace::kKeepBytes)

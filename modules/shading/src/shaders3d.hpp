@@ -233,13 +233,12 @@ struct LitQuad {
     }
 };
 
-/** What the 3D shaders write besides the canvas, and how they test. */
+/** What the 3D shaders write besides the canvas, and the lighting they use. */
 struct DepthTargets {
     uchar* depth = nullptr;  //!< CV_32FC1 rows, canvas-sized; null: not written
     size_t depthStep = 0;
     uchar* ids = nullptr;    //!< CV_32SC1 rows; null: not written
     size_t idsStep = 0;
-    bool test = false;       //!< z-buffer: draw where depth < buffer, strictly
     const Lighting* lighting = nullptr;
 };
 
@@ -297,7 +296,7 @@ struct SurfaceShader {
         }
     }
 
-    //! Draws the span: depth test (z-buffer), depth, face id and colour.
+    //! Draws the span without a depth test (painter's order): depth, face id and colour.
     void operator()(const TriangleSetup& t, T* row, int y, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
@@ -312,15 +311,12 @@ struct SurfaceShader {
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double sum = q[0] + q[1] + q[2];
-            const float depth = float(1.0 / sum);
-            if (out.test && !(depth < depthRow[x]))
-                continue;
+            const double inv = 1.0 / sum;
             if (depthRow)
-                depthRow[x] = depth;
+                depthRow[x] = float(inv);
             if (idRow)
                 idRow[x] = faceId;
             if constexpr (kAttributes == 9) {
-                const double inv = 1.0 / sum;
                 float v[9];
                 for (int k = 0; k < 9; k++)
                     v[k] = float((q[0] * attributes[0][k] + q[1] * attributes[1][k] +
@@ -350,7 +346,8 @@ struct SurfaceShader {
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double sum = q[0] + q[1] + q[2];
-            const float depth = float(1.0 / sum);
+            const double inv = 1.0 / sum;
+            const float depth = float(inv);
             const float current = depthRow[x];
             if (!(depth < current || (depth == current && kept[x] > face)))
                 continue;  // (kept -1 never loses a tie: the buffer's value was first)
@@ -359,7 +356,6 @@ struct SurfaceShader {
             covered[x >> 6] |= uint64_t(1) << (x & 63);
             bound[x >> 6] = std::max(bound[x >> 6], depth);
             if (keptWeights) {
-                const double inv = 1.0 / sum;
                 keptWeights[2 * x] = float(q[slotOf1] * inv);
                 keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
                 continue;
