@@ -59,19 +59,10 @@ void bindLineAndTexture(py::module_& m)
             cv::Mat c = wrapCanvas(canvas);
             Input v = toInput(verts2d, "verts2d"), f = toInput(faces, "faces", true),
                   uv = toInput(texCoords, "texCoords");
-            // The texture is read only: uint8 or float32 H x W x 3, any other dtype converted.
-            py::module_ np = py::module_::import("numpy");
-            py::array t = np.attr("asarray")(texture);
-            const bool is8u = isDtype(t, py::dtype::of<uint8_t>());
-            t = np.attr("ascontiguousarray")(t, py::arg("dtype") = is8u ? "uint8" : "float32");
-            if (t.ndim() != 3 || t.shape(2) != 3)
-                throw py::value_error("texture: expected an H x W x 3 array, got " +
-                                      describe(t));
-            const cv::Mat tex(static_cast<int>(t.shape(0)), static_cast<int>(t.shape(1)),
-                              is8u ? CV_8UC3 : CV_32FC3, const_cast<void*>(t.data()));
+            const Input tex = toImage(texture, "texture");
             {
                 py::gil_scoped_release nogil;
-                sh::texturedTriangles(c, v.mat, f.mat, uv.mat, tex, interpolation, borderMode);
+                sh::texturedTriangles(c, v.mat, f.mat, uv.mat, tex.mat, interpolation, borderMode);
             }
             return canvas;
         },
@@ -90,37 +81,51 @@ void bindLineAndTexture(py::module_& m)
 
     m.def(
         "forEachSpan",
-        [](const py::object& canvasSize, const py::object& vertices, const py::function& fn) {
+        [](const py::object& canvasSize, const py::object& vertices, const py::function& fn,
+           const py::object& depths) {
             const cv::Size size = toCanvasSize(canvasSize);
-            Input v = toInput(vertices, "vertices");
+            Input v = toInput(vertices, "vertices"), z = toInput(depths, "depths");
             // The callback runs Python: the GIL stays held.
-            sh::forEachSpan(size, v.mat,
-                            [&fn](int y, int xBegin, int xEnd, const cv::Vec3d& w,
-                                  const cv::Vec3d& dwdx) {
-                                fn(y, xBegin, xEnd, py::make_tuple(w[0], w[1], w[2]),
-                                   py::make_tuple(dwdx[0], dwdx[1], dwdx[2]));
-                            });
+            auto call = [&fn](int y, int xBegin, int xEnd, const cv::Vec3d& w,
+                              const cv::Vec3d& dwdx) {
+                fn(y, xBegin, xEnd, py::make_tuple(w[0], w[1], w[2]),
+                   py::make_tuple(dwdx[0], dwdx[1], dwdx[2]));
+            };
+            if (depths.is_none())
+                sh::forEachSpan(size, v.mat, call);
+            else
+                sh::forEachSpan(size, v.mat, z.mat, call);
         },
-        py::arg("canvasSize"), py::arg("vertices"), py::arg("fn"),
+        py::arg("canvasSize"), py::arg("vertices"), py::arg("fn"), py::arg("depths") = py::none(),
         "Calls fn(y, xBegin, xEnd, w, dwdx) for each span of samples the triangle covers on a "
         "canvas of canvasSize (width, height): row y, columns [xBegin, xEnd), the barycentric "
         "weights w at (xBegin, y) for the vertices in the order given and their change per "
         "pixel dwdx (tuples of 3 floats). The samples are exactly those flats covers; an "
-        "exception raised by fn propagates.");
+        "exception raised by fn propagates.\n"
+        "depths: the vertices' camera depths Zc (3 values > 0) for a triangle seen in 3D: "
+        "then w and dwdx are h_i = w_i / z_i, affine along the span; h / sum(h) are the "
+        "perspective-correct weights and 1 / sum(h) the depth.");
 
     m.def(
         "forEachSample",
-        [](const py::object& canvasSize, const py::object& vertices, const py::function& fn) {
+        [](const py::object& canvasSize, const py::object& vertices, const py::function& fn,
+           const py::object& depths) {
             const cv::Size size = toCanvasSize(canvasSize);
-            Input v = toInput(vertices, "vertices");
+            Input v = toInput(vertices, "vertices"), z = toInput(depths, "depths");
             // The callback runs Python: the GIL stays held.
-            sh::forEachSample(size, v.mat, [&fn](int x, int y, const cv::Vec3d& w) {
+            auto call = [&fn](int x, int y, const cv::Vec3d& w) {
                 fn(x, y, py::make_tuple(w[0], w[1], w[2]));
-            });
+            };
+            if (depths.is_none())
+                sh::forEachSample(size, v.mat, call);
+            else
+                sh::forEachSample(size, v.mat, z.mat, call);
         },
-        py::arg("canvasSize"), py::arg("vertices"), py::arg("fn"),
+        py::arg("canvasSize"), py::arg("vertices"), py::arg("fn"), py::arg("depths") = py::none(),
         "Calls fn(x, y, w) for each sample the triangle covers on a canvas of canvasSize "
         "(width, height): pixel (x, y) and its barycentric weights w (a tuple of 3 floats, "
         "summing to 1) for the vertices in the order given. The samples are exactly those "
-        "flats covers (forEachSpan is faster); an exception raised by fn propagates.");
+        "flats covers (forEachSpan is faster); an exception raised by fn propagates.\n"
+        "depths: the vertices' camera depths Zc (3 values > 0) for a triangle seen in 3D: the "
+        "weights are then perspective-correct (those drawMesh3d interpolates with).");
 }

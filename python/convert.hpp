@@ -128,6 +128,23 @@ inline cv::Mat wrapInPlace(const py::handle& obj, const char* name, int cn, cons
     return cv::Mat(static_cast<int>(rows), static_cast<int>(cols), type, a.mutable_data(), step);
 }
 
+// A read-only colour image (a texture): uint8 or float32 H x W x 3, any other dtype converted
+// to float32; `mat` views `keep`.
+inline Input toImage(const py::handle& obj, const char* name) {
+    py::module_ np = py::module_::import("numpy");
+    py::array t = np.attr("asarray")(obj);
+    const bool is8u = isDtype(t, py::dtype::of<uint8_t>());
+    t = np.attr("ascontiguousarray")(t, py::arg("dtype") = is8u ? "uint8" : "float32");
+    if (t.ndim() != 3 || t.shape(2) != 3)
+        throw py::value_error(std::string(name) + ": expected an H x W x 3 array, got " +
+                              describe(t));
+    Input in;
+    in.mat = cv::Mat(static_cast<int>(t.shape(0)), static_cast<int>(t.shape(1)),
+                     is8u ? CV_8UC3 : CV_32FC3, const_cast<void*>(t.data()));
+    in.keep = t;
+    return in;
+}
+
 inline cv::Mat wrapCanvas(const py::handle& obj) {
     if (py::isinstance<py::array>(obj) &&
         isDtype(py::reinterpret_borrow<py::array>(obj), py::dtype::of<uint8_t>()))

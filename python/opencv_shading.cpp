@@ -199,6 +199,32 @@ py::array_t<float> newFloat(int rows, int cols, int cn) {
     return py::array_t<float>(shape);
 }
 
+/** Runs a 3D draw (drawFn(canvas, depthBuffer, faceIds) without the GIL) into numpy outputs
+the C++ writes into: an absent depthBuffer starts as the C++ would create it (canvas-sized,
++inf). Returns (canvas, depthBuffer, faceIds). */
+template <class DrawFn>
+py::tuple draw3d(py::object canvas, py::object depthBuffer, DrawFn&& drawFn) {
+    cv::Mat c = wrapCanvas(canvas);
+    cv::Mat dbWrap;
+    if (depthBuffer.is_none()) {
+        py::array_t<float> db = newFloat(c.rows, c.cols, 1);
+        dbWrap = cv::Mat(c.size(), CV_32FC1, db.mutable_data());
+        dbWrap.setTo(std::numeric_limits<float>::infinity());
+        depthBuffer = db;
+    } else {
+        dbWrap = wrapInPlace<float>(depthBuffer, "depthBuffer", 0, "float32");
+    }
+    py::array_t<int32_t> ids({static_cast<py::ssize_t>(c.rows), static_cast<py::ssize_t>(c.cols)});
+    const cv::Mat idWrap(c.size(), CV_32SC1, ids.mutable_data());
+    cv::Mat db = dbWrap, id = idWrap;
+    {
+        py::gil_scoped_release nogil;
+        drawFn(c, db, id);
+    }
+    py::object dbOut = finish(depthBuffer, dbWrap, db);
+    return py::make_tuple(canvas, dbOut, finish(ids, idWrap, id));
+}
+
 // ---- settings -------------------------------------------------------------------------------
 
 py::tuple tuple3(double a, double b, double c) { return py::make_tuple(a, b, c); }
@@ -320,7 +346,8 @@ PYBIND11_MODULE(opencv_shading, m) {
         "write ('lights' returns a copy: assign a new list to change it).")
         .def(py::init([](ShadeArg shadeType, int visibility, int cullMode, double zNear,
                          const py::object& lights, const py::object& ambient, double ka,
-                         double kd, double ks, double shininess) {
+                         double kd, double ks, double shininess, int textureInterpolation,
+                         int textureBorder) {
                  sh::RenderSettings s;
                  s.shadeType = shadeType.value;
                  s.visibility = visibility;
@@ -332,6 +359,8 @@ PYBIND11_MODULE(opencv_shading, m) {
                  s.kd = kd;
                  s.ks = ks;
                  s.shininess = shininess;
+                 s.textureInterpolation = textureInterpolation;
+                 s.textureBorder = textureBorder;
                  return s;
              }),
              py::kw_only(), py::arg_v("shadeType", ShadeArg{defaults.shadeType}, "SHADE_GOURAUD"),
@@ -342,8 +371,12 @@ PYBIND11_MODULE(opencv_shading, m) {
                  tuple3(defaults.ambient[0], defaults.ambient[1], defaults.ambient[2]),
              py::arg("ka") = defaults.ka, py::arg("kd") = defaults.kd,
              py::arg("ks") = defaults.ks, py::arg("shininess") = defaults.shininess,
+             py::arg_v("textureInterpolation", defaults.textureInterpolation,
+                       "cv2.INTER_LINEAR"),
+             py::arg_v("textureBorder", defaults.textureBorder, "cv2.BORDER_REPLICATE"),
              "Defaults: Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit: vertex "
-             "colours as given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16.")
+             "colours as given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16, "
+             "textures sampled bilinearly with the border replicated.")
         .def_property(
             "shadeType", [](const sh::RenderSettings& s) { return s.shadeType; },
             [](sh::RenderSettings& s, ShadeArg v) { s.shadeType = v.value; },
@@ -368,6 +401,10 @@ PYBIND11_MODULE(opencv_shading, m) {
         .def_readwrite("kd", &sh::RenderSettings::kd, "Diffuse reflectance.")
         .def_readwrite("ks", &sh::RenderSettings::ks, "Specular reflectance.")
         .def_readwrite("shininess", &sh::RenderSettings::shininess, "Phong exponent.")
+        .def_readwrite("textureInterpolation", &sh::RenderSettings::textureInterpolation,
+                       "drawTexturedMesh3d: cv2.INTER_LINEAR or cv2.INTER_NEAREST.")
+        .def_readwrite("textureBorder", &sh::RenderSettings::textureBorder,
+                       "drawTexturedMesh3d: cv2.BORDER_* (as cv2.remap's borderMode).")
         .def("__repr__", [](const sh::RenderSettings& s) {
             std::string lights;
             for (const sh::PointLight& l : s.lights)
@@ -380,7 +417,9 @@ PYBIND11_MODULE(opencv_shading, m) {
                    ", zNear=" + reprNumber(s.zNear) + ", lights=[" + lights + "], ambient=" +
                    reprTuple(s.ambient[0], s.ambient[1], s.ambient[2]) + ", ka=" +
                    reprNumber(s.ka) + ", kd=" + reprNumber(s.kd) + ", ks=" + reprNumber(s.ks) +
-                   ", shininess=" + reprNumber(s.shininess) + ")";
+                   ", shininess=" + reprNumber(s.shininess) +
+                   ", textureInterpolation=" + std::to_string(s.textureInterpolation) +
+                   ", textureBorder=" + std::to_string(s.textureBorder) + ")";
         });
 
     m.def(
@@ -513,33 +552,14 @@ PYBIND11_MODULE(opencv_shading, m) {
            const py::object& vcolors, const py::object& cameraMatrix, const py::object& rvec,
            const py::object& tvec, const sh::RenderSettings& settings,
            const py::object& normals, py::object depthBuffer) {
-            cv::Mat c = wrapCanvas(canvas);
             Input v = toInput(verts3d, "verts3d"), f = toInput(faces, "faces", true),
                   col = toInput(vcolors, "vcolors"), k = toInput(cameraMatrix, "cameraMatrix"),
                   r = toInput(rvec, "rvec"), t = toInput(tvec, "tvec"),
                   n = toInput(normals, "normals");
-            // Outputs are numpy arrays the C++ writes into. An absent depthBuffer starts as the
-            // C++ would create it: canvas-sized, +inf.
-            cv::Mat dbWrap;
-            if (depthBuffer.is_none()) {
-                py::array_t<float> db = newFloat(c.rows, c.cols, 1);
-                dbWrap = cv::Mat(c.size(), CV_32FC1, db.mutable_data());
-                dbWrap.setTo(std::numeric_limits<float>::infinity());
-                depthBuffer = db;
-            } else {
-                dbWrap = wrapInPlace<float>(depthBuffer, "depthBuffer", 0, "float32");
-            }
-            py::array_t<int32_t> ids({static_cast<py::ssize_t>(c.rows),
-                                      static_cast<py::ssize_t>(c.cols)});
-            const cv::Mat idWrap(c.size(), CV_32SC1, ids.mutable_data());
-            cv::Mat db = dbWrap, id = idWrap;
-            {
-                py::gil_scoped_release nogil;
+            return draw3d(canvas, depthBuffer, [&](cv::Mat& c, cv::Mat& db, cv::Mat& id) {
                 sh::drawMesh3d(c, v.mat, f.mat, col.mat, k.mat, r.mat, t.mat, settings, n.mat,
                                db, id);
-            }
-            py::object dbOut = finish(depthBuffer, dbWrap, db);
-            return py::make_tuple(canvas, dbOut, finish(ids, idWrap, id));
+            });
         },
         py::arg("canvas"), py::arg("verts3d"), py::arg("faces"), py::arg("vcolors"),
         py::arg("cameraMatrix"), py::arg("rvec"), py::arg("tvec"),
@@ -556,6 +576,35 @@ PYBIND11_MODULE(opencv_shading, m) {
         "drawn in several calls composite), or None for a new one filled with +inf.\n"
         "Returns (canvas, depthBuffer, faceIds): depthBuffer holds camera Zc of drawn samples, "
         "faceIds (H x W int32) the index of the face that coloured each pixel, -1 elsewhere.");
+
+    m.def(
+        "drawTexturedMesh3d",
+        [](py::object canvas, const py::object& verts3d, const py::object& faces,
+           const py::object& texCoords, const py::object& texture,
+           const py::object& cameraMatrix, const py::object& rvec, const py::object& tvec,
+           const sh::RenderSettings& settings, const py::object& normals,
+           py::object depthBuffer) {
+            Input v = toInput(verts3d, "verts3d"), f = toInput(faces, "faces", true),
+                  uv = toInput(texCoords, "texCoords"), k = toInput(cameraMatrix, "cameraMatrix"),
+                  r = toInput(rvec, "rvec"), t = toInput(tvec, "tvec"),
+                  n = toInput(normals, "normals");
+            const Input tex = toImage(texture, "texture");
+            return draw3d(canvas, depthBuffer, [&](cv::Mat& c, cv::Mat& db, cv::Mat& id) {
+                sh::drawTexturedMesh3d(c, v.mat, f.mat, uv.mat, tex.mat, k.mat, r.mat, t.mat,
+                                       settings, n.mat, db, id);
+            });
+        },
+        py::arg("canvas"), py::arg("verts3d"), py::arg("faces"), py::arg("texCoords"),
+        py::arg("texture"), py::arg("cameraMatrix"), py::arg("rvec"), py::arg("tvec"),
+        py::arg_v("settings", sh::RenderSettings(), "RenderSettings()"),
+        py::arg("normals") = py::none(), py::arg("depthBuffer") = py::none(),
+        "drawMesh3d with a texture in place of the vertex colours, sampled perspective-"
+        "correctly as cv2.remap samples (settings.textureInterpolation, "
+        "settings.textureBorder); lit, the texel takes the vertex colour's place in the Phong "
+        "model.\n\n"
+        "texCoords: L x 2 texture coordinates in texture pixels (a file's normalized (u, v) "
+        "are (u * cols - 0.5, (1 - v) * rows - 0.5)). texture: H x W x 3 uint8 or float32 "
+        "image. The other arguments and the result are drawMesh3d's.");
 
 #ifdef OPENCV_SHADING_PY_MESHIO
     m.def(

@@ -47,8 +47,9 @@ class RenderSettings:
     """How drawMesh3d shades and which faces it keeps.
 
     Defaults: Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit: vertex colours as
-    given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16. `lights` returns a copy:
-    assign a new list to change it.
+    given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16, textures (for
+    drawTexturedMesh3d) sampled with cv2.INTER_LINEAR and cv2.BORDER_REPLICATE. `lights`
+    returns a copy: assign a new list to change it.
     """
     shadeType: int  # assignable from an int or "flat" / "gouraud" / "phong"
     visibility: int
@@ -60,11 +61,14 @@ class RenderSettings:
     kd: float
     ks: float
     shininess: float
+    textureInterpolation: int
+    textureBorder: int
 
     def __init__(self, *, shadeType: ShadeType = ..., visibility: int = ...,
                  cullMode: int = ..., zNear: float = 1e-3, lights: Sequence[PointLight] = (),
                  ambient: Vec3 = (1, 1, 1), ka: float = 0.2, kd: float = 0.7, ks: float = 0.5,
-                 shininess: float = 16) -> None: ...
+                 shininess: float = 16, textureInterpolation: int = ...,
+                 textureBorder: int = ...) -> None: ...
 
 
 def flats(canvas: Canvas, vertices: ArrayLike, vcolors: ArrayLike) -> Canvas:
@@ -110,6 +114,18 @@ def drawMesh3d(canvas: Canvas, verts3d: ArrayLike, faces: ArrayLike, vcolors: Ar
     """Draws a 3D mesh seen by an OpenCV camera into canvas in place. depthBuffer (H x W float32)
     is tested against and updated in place, or created (+inf) when None. Returns (canvas,
     depthBuffer, faceIds), faceIds H x W int32 (-1 where no face)."""
+
+
+def drawTexturedMesh3d(canvas: Canvas, verts3d: ArrayLike, faces: ArrayLike,
+                       texCoords: ArrayLike, texture: npt.NDArray[Union[np.float32, np.uint8]],
+                       cameraMatrix: ArrayLike, rvec: ArrayLike, tvec: ArrayLike,
+                       settings: RenderSettings = ..., normals: ArrayLike | None = None,
+                       depthBuffer: npt.NDArray[np.float32] | None = None
+                       ) -> Tuple[Canvas, npt.NDArray[np.float32], npt.NDArray[np.int32]]:
+    """drawMesh3d with a texture (H x W x 3) in place of the vertex colours: texCoords L x 2 in
+    texture pixels, interpolated perspective-correctly and sampled as cv2.remap samples
+    (settings.textureInterpolation, settings.textureBorder); lit, the texel takes the vertex
+    colour's place. Returns (canvas, depthBuffer, faceIds) as drawMesh3d."""
 
 
 def loadMesh(filename: str | os.PathLike[str]
@@ -171,14 +187,19 @@ def texturedTriangles(canvas: Canvas, verts2d: ArrayLike, faces: ArrayLike,
 
 
 def forEachSample(canvasSize: Tuple[int, int], vertices: ArrayLike,
-                  fn: Callable[[int, int, Tuple[float, float, float]], None]) -> None:
+                  fn: Callable[[int, int, Tuple[float, float, float]], None],
+                  depths: ArrayLike | None = None) -> None:
     """Calls fn(x, y, w) per covered sample (exactly those flats covers) with its barycentric
-    weights w for the vertices in the order given."""
+    weights w for the vertices in the order given. With depths (the vertices' camera Zc > 0)
+    the weights are perspective-correct."""
 
 
 def forEachSpan(canvasSize: Tuple[int, int], vertices: ArrayLike,
                 fn: Callable[[int, int, int, Tuple[float, float, float],
-                              Tuple[float, float, float]], None]) -> None:
+                              Tuple[float, float, float]], None],
+                depths: ArrayLike | None = None) -> None:
     """Calls fn(y, xBegin, xEnd, w, dwdx) per span of covered samples (exactly those flats
     covers): row y, columns [xBegin, xEnd), barycentric weights w at xBegin for the vertices in
-    the order given, and their change per pixel dwdx."""
+    the order given, and their change per pixel dwdx. With depths (camera Zc > 0), w and dwdx
+    are h_i = w_i / z_i: h / sum(h) are the perspective-correct weights, 1 / sum(h) the
+    depth."""

@@ -38,7 +38,8 @@ def test_render_settings_defaults():
     assert (s.ka, s.kd, s.ks, s.shininess) == (0.2, 0.7, 0.5, 16.0)
     assert repr(s) == ("RenderSettings(shadeType=SHADE_GOURAUD, visibility=VISIBILITY_ZBUFFER, "
                        "cullMode=CULL_NONE, zNear=0.001, lights=[], ambient=(1.0, 1.0, 1.0), "
-                       "ka=0.2, kd=0.7, ks=0.5, shininess=16.0)")
+                       "ka=0.2, kd=0.7, ks=0.5, shininess=16.0, textureInterpolation=1, "
+                       "textureBorder=1)")
 
 
 def test_render_settings_keywords_and_attributes():

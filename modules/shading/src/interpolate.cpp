@@ -8,6 +8,7 @@
 #include "raster.hpp"
 #include "shaders.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace cv {
@@ -46,7 +47,43 @@ void walkWithWeights(Size canvasSize, InputArray vertices, bool callbackEmpty, F
     });
 }
 
+/** 1 / Zc of a triangle's three vertices, checked: `depths` holds 3 finite values > 0. */
+Vec3d inverseDepths(InputArray depths)
+{
+    if (depths.empty())
+        CV_Error(Error::StsBadArg, "depths: expected 3 camera depths, got none");
+    std::vector<double> z;
+    readDepths(depths, "depths", 3, z);
+    Vec3d inv;
+    for (int i = 0; i < 3; i++) {
+        if (!(z[i] > 0 && std::isfinite(z[i])))
+            CV_Error(Error::StsOutOfRange,
+                     format("depths: expected finite values > 0, got %g at %d", z[i], i));
+        inv[i] = 1.0 / z[i];
+    }
+    return inv;
+}
+
 }  // namespace
+
+void forEachSpan(Size canvasSize, InputArray vertices, InputArray depths, const SpanCallback& fn)
+{
+    const Vec3d invZ = inverseDepths(depths);
+    forEachSpan(canvasSize, vertices, [&](int y, int xBegin, int xEnd, const Vec3d& w,
+                                          const Vec3d& dwdx) {
+        fn(y, xBegin, xEnd, w.mul(invZ), dwdx.mul(invZ));
+    });
+}
+
+void forEachSample(Size canvasSize, InputArray vertices, InputArray depths,
+                   const SampleCallback& fn)
+{
+    const Vec3d invZ = inverseDepths(depths);
+    forEachSample(canvasSize, vertices, [&](int x, int y, const Vec3d& w) {
+        const Vec3d h = w.mul(invZ);
+        fn(x, y, h * (1.0 / (h[0] + h[1] + h[2])));
+    });
+}
 
 void forEachSpan(Size canvasSize, InputArray vertices, const SpanCallback& fn)
 {

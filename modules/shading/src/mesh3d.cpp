@@ -29,7 +29,8 @@ PointLight::PointLight(const Point3d& position_, const Vec3d& intensity_)
 
 RenderSettings::RenderSettings()
     : shadeType(SHADE_GOURAUD), visibility(VISIBILITY_ZBUFFER), cullMode(CULL_NONE), zNear(1e-3),
-      ambient(1, 1, 1), ka(0.2), kd(0.7), ks(0.5), shininess(16)
+      ambient(1, 1, 1), ka(0.2), kd(0.7), ks(0.5), shininess(16),
+      textureInterpolation(INTER_LINEAR), textureBorder(BORDER_REPLICATE)
 {
 }
 
@@ -115,30 +116,32 @@ void checkSettings(const RenderSettings& s)
 }
 
 /** The mesh as the band pass draws it: projected, clipped triangles, and per vertex 1 / Zc and
-kAttributes values (interpolated perspective-correctly by SurfaceShader). */
+the surface's attributes (interpolated perspective-correctly by SurfaceShader). */
 struct ScreenMesh {
     MeshData mesh;                   //!< projected vertices and faces; faceDepth for painter's
     std::vector<double> invZ;        //!< per vertex
     std::vector<double> attributes;  //!< per vertex, `stride` values
-    int stride = 0;
+    Surface surface = Surface::kFlat;
+    int stride = 0;                  //!< attributeCount(surface)
     std::vector<int> source;         //!< per face: its index in the caller's faces
-    std::vector<Vec3d> faceColor;    //!< per face (flat shading), canvas units
+    std::vector<Vec6f> faceValues;   //!< per face: kFlat its colour (canvas units), kTexturedFaceLit its D, S
 
     size_t capacityBytes() const
     {
         return mesh.capacityBytes() + (invZ.capacity() + attributes.capacity()) * sizeof(double) +
-               source.capacity() * sizeof(int) + faceColor.capacity() * sizeof(Vec3d);
+               source.capacity() * sizeof(int) + faceValues.capacity() * sizeof(Vec6f);
     }
 };
 
-template <typename T>
+template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
                       const int* kept, const float* weights, int width);
 
 /** The span shaders of the 3D path, built per face from the ScreenMesh. */
-template <typename T, int kAttributes>
+template <typename T, Surface kSurface>
 struct SurfaceShaders {
-    using Shader = SurfaceShader<T, kAttributes>;
+    using Shader = SurfaceShader<T, kSurface>;
+    static constexpr int kAttributes = attributeCount(kSurface);
     static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
     const ScreenMesh* screen;
     const DepthTargets* targets;
@@ -148,8 +151,8 @@ struct SurfaceShaders {
     //! Deferred Phong (BandOptions::deferred): lights a row's kept samples.
     void shadeKeptRow(T* row, int y, const int* kept, const float* weights, int width) const
     {
-        if constexpr (kAttributes == 9)
-            shadeKeptSamples(*screen, *targets, row, y, kept, weights, width);
+        if constexpr (litPerSample(kSurface))
+            shadeKeptSamples<T, kSurface>(*screen, *targets, row, y, kept, weights, width);
     }
 
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
@@ -168,24 +171,27 @@ struct SurfaceShaders {
             if (order[i] == 2)
                 s.slotOf2 = i;
         }
-        if (kAttributes == 0)
+        if constexpr (kSurface == Surface::kFlat)
             for (int k = 0; k < 3; k++)
-                s.color[k] = toChannel<T>(float(screen->faceColor[face][k]));
+                s.color[k] = toChannel<T>(screen->faceValues[face][k]);
+        if constexpr (kSurface == Surface::kTexturedFaceLit)
+            for (int k = 0; k < 6; k++)
+                s.faceLight[k] = screen->faceValues[face][k];
         return s;
     }
 };
 
-/** Deferred Phong: lights the kept samples of a row (see BandOptions::deferred): the kept face's
-vertex attributes weighted by the kept weights, lit four samples at a time. */
-template <typename T>
+/** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred): the kept
+face's vertex attributes weighted by the kept weights, lit four samples at a time. */
+template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
                   const int* kept, const float* weights, int width)
 {
     int* const idRow =
         targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
-    const Lighting& lighting = *targets.lighting;
+    constexpr int n = attributeCount(kSurface);
     int lastFace = -1;
-    float a[3][9] = {};  // the kept face's vertex attributes
+    float a[3][n] = {};  // the kept face's vertex attributes
     LitQuad<T> quad;
     for (int x = 0; x < width; x++) {
         const int face = kept[x];
@@ -196,41 +202,58 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
         if (face != lastFace) {
             const Vec3i& f = screen.mesh.faces[face];
             for (int i = 0; i < 3; i++)
-                for (int k = 0; k < 9; k++)
-                    a[i][k] = float(screen.attributes[size_t(f[i]) * 9 + k]);
+                for (int k = 0; k < n; k++)
+                    a[i][k] = float(screen.attributes[size_t(f[i]) * n + k]);
             lastFace = face;
         }
         const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
-        float v[9];
-        for (int k = 0; k < 9; k++)
+        float v[n];
+        for (int k = 0; k < n; k++)
             v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
-        quad.add(row + 3 * x, v, lighting);
+        shadeAttributes<T, kSurface>(row + 3 * x, v, targets, quad);
     }
-    quad.flush(lighting);
+    quad.flush(*targets.lighting);
 }
 
 //! The inputs of drawMesh3d, checked and converted.
 struct Mesh3dInput {
     std::vector<Vec3d> verts, colors, normals;
+    std::vector<Point2d> texCoords;  //!< textured meshes (then `colors` is empty)
     std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
     std::vector<Vec3d> camera;       //!< per vertex: camera coordinates (NaN: not finite)
-    std::vector<Vec3f> faceColors;   //!< per face: lit flat colours
+    std::vector<Vec6f> faceLit;      //!< per face: lit flat colours, or D, S when textured
     std::vector<Vec3i> faces;
 };
 
 //! Points lit together (Lighting::shadeMany) from a stack block.
 constexpr int kLightBlock = 64;
 
-/** Moves the mesh into the camera frame, culls, clips at zNear and projects: fills `screen`.
-Attributes per vertex (stride): 0 flat, 3 a colour (Gouraud, or unlit), 9 world position, normal
-and colour (lit Phong). */
+//! The surface a mesh is drawn with, from its shading, lights and texture.
+Surface surfaceFor(int shadeType, bool lit, bool textured)
+{
+    if (!textured)
+        return shadeType == SHADE_FLAT                 ? Surface::kFlat
+               : shadeType == SHADE_PHONG && lit       ? Surface::kPhong
+                                                       : Surface::kGouraud;  // unlit Phong too
+    if (!lit)
+        return Surface::kTextured;
+    return shadeType == SHADE_FLAT      ? Surface::kTexturedFaceLit
+           : shadeType == SHADE_GOURAUD ? Surface::kTexturedVertexLit
+                                        : Surface::kTexturedSampleLit;
+}
+
+/** Moves the mesh into the camera frame, culls, clips at zNear and projects: fills `screen`,
+with the attributes of `screen.surface` per vertex (see Surface). */
 void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& settings,
                      const Lighting& lighting, ScreenMesh& screen)
 {
     const int vertexCount = int(in.verts.size()), faceCount = int(in.faces.size());
     const bool lit = lighting.lit();
+    const bool textured = !in.texCoords.empty();
     const int shade = settings.shadeType;
-    const int stride = shade == SHADE_FLAT ? 0 : shade == SHADE_PHONG && lit ? 9 : 3;
+    const Surface surface = surfaceFor(shade, lit, textured);
+    const int stride = attributeCount(surface);
+    screen.surface = surface;
     screen.stride = stride;
     const double zNear = settings.zNear;
     const bool painter = settings.visibility == VISIBILITY_PAINTER;
@@ -244,22 +267,32 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.invZ.resize(vertexCount);
     screen.attributes.resize(size_t(vertexCount) * stride);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const bool litVertices = stride == 3 && lit;  // Gouraud: each vertex lit once
+    // Gouraud: each vertex lit once, its colour (or D and S when textured, after the uv).
+    const bool litVertices =
+        surface == Surface::kTexturedVertexLit || (surface == Surface::kGouraud && lit);
     forChunks(vertexCount, 4096, [&](int begin, int end) {
         if (litVertices)
             for (int block = begin; block < end; block += kLightBlock) {
                 const int count = std::min(kLightBlock, end - block);
-                float points[kLightBlock * 9], colors[kLightBlock * 3];
+                const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
+                float points[kLightBlock * 9], values[kLightBlock * 6];
                 for (int j = 0; j < count; j++)
                     for (int k = 0; k < 3; k++) {
-                        points[9 * j + k] = float(in.verts[block + j][k]);
-                        points[9 * j + 3 + k] = float(in.normals[block + j][k]);
-                        points[9 * j + 6 + k] = float(in.colors[block + j][k]);
+                        float* p = points + inStride * j;
+                        p[k] = float(in.verts[block + j][k]);
+                        p[3 + k] = float(in.normals[block + j][k]);
+                        if (!textured)
+                            p[6 + k] = float(in.colors[block + j][k]);
                     }
-                lighting.shadeMany(points, colors, count);
+                if (textured)
+                    lighting.termsMany(points, values, count);
+                else
+                    lighting.shadeMany(points, values, count);
+                const int first = stride - outStride;  // after the uv
                 for (int j = 0; j < count; j++)
-                    for (int k = 0; k < 3; k++)
-                        screen.attributes[size_t(block + j) * 3 + k] = colors[3 * j + k];
+                    for (int k = 0; k < outStride; k++)
+                        screen.attributes[size_t(block + j) * stride + first + k] =
+                            values[outStride * j + k];
             }
         for (int i = begin; i < end; i++) {
             const Vec3d c = cam.toCamera(in.verts[i]);
@@ -268,12 +301,17 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             projected[i] = front ? cam.project(c) : Point2d(nan, nan);
             screen.invZ[i] = 1.0 / c[2];
             double* a = screen.attributes.data() + size_t(i) * stride;
-            if (stride == 3 && !lit) {
+            if (textured) {
+                a[0] = in.texCoords[i].x, a[1] = in.texCoords[i].y;
+                a += 2;
+            }
+            if (surface == Surface::kGouraud && !lit) {
                 std::copy(in.colors[i].val, in.colors[i].val + 3, a);
-            } else if (stride == 9) {
+            } else if (surface == Surface::kPhong || surface == Surface::kTexturedSampleLit) {
                 std::copy(in.verts[i].val, in.verts[i].val + 3, a);
                 std::copy(in.normals[i].val, in.normals[i].val + 3, a + 3);
-                std::copy(in.colors[i].val, in.colors[i].val + 3, a + 6);
+                if (!textured)
+                    std::copy(in.colors[i].val, in.colors[i].val + 3, a + 6);
             }
         }
     });
@@ -296,6 +334,10 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             kind[i] = kSkip;
             if (std::isnan(c0[0]) || std::isnan(c1[0]) || std::isnan(c2[0]))
                 continue;
+            if (textured && !(usableTexCoord(in.texCoords[f[0]]) &&
+                              usableTexCoord(in.texCoords[f[1]]) &&
+                              usableTexCoord(in.texCoords[f[2]])))
+                continue;
             if (settings.cullMode != CULL_NONE) {
                 const Vec3d& v0 = in.verts[f[0]];
                 const double facing = (in.verts[f[1]] - v0).cross(in.verts[f[2]] - v0).dot(eye - v0);
@@ -310,18 +352,24 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         chunkFaces[begin / kChunk + 1] = faces;
         chunkVertices[begin / kChunk + 1] = vertices;
     });
-    // Lit flat faces: each lit once, at its centroid with its face normal and mean colour.
-    std::vector<Vec3f>& faceLit = in.faceColors;
+    // Lit flat faces: each lit once, at its centroid with its face normal and mean colour (or,
+    // textured, its D and S).
+    std::vector<Vec6f>& faceLit = in.faceLit;
     if (shade == SHADE_FLAT && lit) {
         faceLit.resize(faceCount);
         forChunks(faceCount, kChunk, [&](int begin, int end) {
-            float points[kLightBlock * 9] = {}, colors[kLightBlock * 3];
+            const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
+            float points[kLightBlock * 9] = {}, values[kLightBlock * 6];
             int slots[kLightBlock];
             int count = 0;
             auto light = [&]() {
-                lighting.shadeMany(points, colors, count);
+                if (textured)
+                    lighting.termsMany(points, values, count);
+                else
+                    lighting.shadeMany(points, values, count);
                 for (int j = 0; j < count; j++)
-                    faceLit[slots[j]] = Vec3f(colors[3 * j], colors[3 * j + 1], colors[3 * j + 2]);
+                    for (int k = 0; k < outStride; k++)
+                        faceLit[slots[j]][k] = values[outStride * j + k];
                 count = 0;
             };
             for (int i = begin; i < end; i++) {
@@ -329,13 +377,14 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                     continue;
                 const Vec3i& f = in.faces[i];
                 const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
-                const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
                 const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
-                float* p = points + 9 * count;
+                float* p = points + inStride * count;
                 for (int k = 0; k < 3; k++) {
                     p[k] = float(centroid[k]);
                     p[3 + k] = float(n[k]);
-                    p[6 + k] = float((c0[k] + c1[k] + c2[k]) / 3.0);
+                    if (!textured)
+                        p[6 + k] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
+                                          in.colors[f[2]][k]) / 3.0);
                 }
                 slots[count++] = i;
                 if (count == kLightBlock)
@@ -352,7 +401,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.mesh.faces.resize(outFaces);
     screen.source.resize(outFaces);
     screen.mesh.faceDepth.resize(outFaces);
-    screen.faceColor.resize(shade == SHADE_FLAT ? outFaces : 0);
+    screen.faceValues.resize(shade == SHADE_FLAT ? outFaces : 0);
     projected.resize(outVertices);
     screen.invZ.resize(outVertices);
     screen.attributes.resize(size_t(outVertices) * stride);
@@ -401,13 +450,13 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                     screen.mesh.faces[nextFace++] = Vec3i(ab, c, ca);
                 }
             }
-            Vec3d flat;
-            if (shade == SHADE_FLAT) {
+            Vec6f flat;  // kFlat: the colour; kTexturedFaceLit: D, S
+            if (shade == SHADE_FLAT && lit) {
+                flat = faceLit[i];
+            } else if (surface == Surface::kFlat) {  // unlit: the mean as the 2D flats() takes it
                 const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
-                // Unlit: the mean as the 2D flats() takes it.
-                flat = lit ? Vec3d(faceLit[i])
-                           : Vec3d((c0[0] + c1[0] + c2[0]) / 3.0, (c0[1] + c1[1] + c2[1]) / 3.0,
-                                   (c0[2] + c1[2] + c2[2]) / 3.0);
+                for (int k = 0; k < 3; k++)
+                    flat[k] = float((c0[k] + c1[k] + c2[k]) / 3.0);
             }
             const double depth =
                 painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
@@ -421,34 +470,43 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                             : 1.0 / std::max({screen.invZ[piece[0]], screen.invZ[piece[1]],
                                               screen.invZ[piece[2]]});
                 if (shade == SHADE_FLAT)
-                    screen.faceColor[k] = flat;
+                    screen.faceValues[k] = flat;
             }
         }
     });
+}
+
+template <typename T, Surface kSurface>
+void drawSurface(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets, bool zbuffer)
+{
+    const Vec<T, 3>* const noBackground = nullptr;
+    BandOptions options;
+    options.depthTested = zbuffer;
+    // Per-sample lighting costs more than the bookkeeping: shade each sample once.
+    options.deferred = options.frontToBack = litPerSample(kSurface);
+    drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, kSurface>{&screen, &targets},
+                    noBackground, options);
 }
 
 template <typename T>
 void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
                     bool zbuffer)
 {
-    const Vec<T, 3>* const noBackground = nullptr;
-    BandOptions options;
-    options.depthTested = zbuffer;
-    // Per-sample lighting costs more than the bookkeeping: shade each sample once.
-    options.deferred = options.frontToBack = screen.stride == 9;
-    switch (screen.stride) {
-    case 0:
-        drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 0>{&screen, &targets},
-                        noBackground, options);
-        break;
-    case 3:
-        drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 3>{&screen, &targets},
-                        noBackground, options);
-        break;
-    default:
-        drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, 9>{&screen, &targets},
-                        noBackground, options);
-        break;
+    switch (screen.surface) {
+    case Surface::kFlat:
+        return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer);
+    case Surface::kGouraud:
+        return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer);
+    case Surface::kPhong:
+        return drawSurface<T, Surface::kPhong>(canvas, screen, targets, zbuffer);
+    case Surface::kTextured:
+        return drawSurface<T, Surface::kTextured>(canvas, screen, targets, zbuffer);
+    case Surface::kTexturedFaceLit:
+        return drawSurface<T, Surface::kTexturedFaceLit>(canvas, screen, targets, zbuffer);
+    case Surface::kTexturedVertexLit:
+        return drawSurface<T, Surface::kTexturedVertexLit>(canvas, screen, targets, zbuffer);
+    case Surface::kTexturedSampleLit:
+        return drawSurface<T, Surface::kTexturedSampleLit>(canvas, screen, targets, zbuffer);
     }
 }
 
@@ -467,19 +525,37 @@ void computeNormals(InputArray verts3d, InputArray faces, OutputArray vertexNorm
         writeRows(perFace, faceNormals);
 }
 
-void drawMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray faces,
-                InputArray vcolors, InputArray cameraMatrix, InputArray rvec, InputArray tvec,
-                const RenderSettings& settings, InputArray normals,
-                InputOutputArray depthBuffer, OutputArray faceIds)
+namespace {
+
+/** drawMesh3d and drawTexturedMesh3d: `vcolors` for the one, `texCoords` and `texture` for the
+other (the unused ones empty). */
+void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray faces,
+                  InputArray vcolors, InputArray texCoords, InputArray texture,
+                  InputArray cameraMatrix, InputArray rvec, InputArray tvec,
+                  const RenderSettings& settings, InputArray normals,
+                  InputOutputArray depthBuffer, OutputArray faceIds, bool textured)
 {
     // Every argument is checked before anything is written.
     checkCanvas(canvasArr, "canvas");
     checkSettings(settings);
+    Mat tex;
+    if (textured) {
+        tex = texture.getMat();
+        checkTexture(tex, "texture");
+        checkSampling(settings.textureInterpolation, "settings.textureInterpolation",
+                      settings.textureBorder, "settings.textureBorder");
+    }
     const Camera cam = readCamera(cameraMatrix, rvec, tvec);
     thread_local Mesh3dInput in;
     readVectors(verts3d, "verts3d", -1, in.verts);
     const int vertexCount = int(in.verts.size());
-    readColors(vcolors, "vcolors", vertexCount, in.colors);
+    if (textured) {
+        readPoints(texCoords, "texCoords", vertexCount, in.texCoords);
+        in.colors.clear();
+    } else {
+        readColors(vcolors, "vcolors", vertexCount, in.colors);
+        in.texCoords.clear();
+    }
     readFaces(faces, "faces", vertexCount, in.faces);
     const bool lit = !settings.lights.empty();
     const bool needNormals = lit && settings.shadeType != SHADE_FLAT;
@@ -542,14 +618,42 @@ void drawMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray faces
     targets.ids = ids.empty() ? nullptr : ids.data;
     targets.idsStep = ids.empty() ? 0 : ids.step[0];
     targets.lighting = &lighting;
-    if (canvas.depth() == CV_8U)
+    const Mat texels = textured ? textureInUnitsOf(tex, canvas.depth()) : Mat();
+    if (canvas.depth() == CV_8U) {
+        const RemapSampler<uchar> sampler(texels, settings.textureInterpolation,
+                                          settings.textureBorder);
+        targets.sampler8u = &sampler;
         drawScreenMesh<uchar>(canvas, screen, targets, zbuffer);
-    else
+    } else {
+        const RemapSampler<float> sampler(texels, settings.textureInterpolation,
+                                          settings.textureBorder);
+        targets.sampler32f = &sampler;
         drawScreenMesh<float>(canvas, screen, targets, zbuffer);
+    }
     if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
         screen = ScreenMesh();
     if (in.verts.capacity() * sizeof(Vec3d) * 3 > MeshWorkspace::kKeepBytes)
         in = Mesh3dInput();
+}
+
+}  // namespace
+
+void drawMesh3d(InputOutputArray canvas, InputArray verts3d, InputArray faces,
+                InputArray vcolors, InputArray cameraMatrix, InputArray rvec, InputArray tvec,
+                const RenderSettings& settings, InputArray normals,
+                InputOutputArray depthBuffer, OutputArray faceIds)
+{
+    renderMesh3d(canvas, verts3d, faces, vcolors, noArray(), noArray(), cameraMatrix, rvec, tvec,
+                 settings, normals, depthBuffer, faceIds, false);
+}
+
+void drawTexturedMesh3d(InputOutputArray canvas, InputArray verts3d, InputArray faces,
+                        InputArray texCoords, InputArray texture, InputArray cameraMatrix,
+                        InputArray rvec, InputArray tvec, const RenderSettings& settings,
+                        InputArray normals, InputOutputArray depthBuffer, OutputArray faceIds)
+{
+    renderMesh3d(canvas, verts3d, faces, noArray(), texCoords, texture, cameraMatrix, rvec, tvec,
+                 settings, normals, depthBuffer, faceIds, true);
 }
 
 }  // namespace shading

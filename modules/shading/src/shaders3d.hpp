@@ -1,15 +1,18 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
 // Span shaders of the 3D path: perspective-correct depth and attributes, the z-buffer test, the
-// depth and face-id outputs, and the Phong lighting model (seed 004) they share.
+// depth and face-id outputs, texturing, and the Phong lighting model (seed 004) they share.
 #ifndef OPENCV_SHADING_SHADERS3D_HPP
 #define OPENCV_SHADING_SHADERS3D_HPP
 
 #include "shaders.hpp"
+#include "texture_sampler.hpp"
 
 #include <opencv2/core.hpp>
 
 #include <cmath>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace cv {
@@ -45,9 +48,8 @@ struct Lighting {
     }
 
 #if OPENCV_SHADING_SIMD128
-    /** shade() for four samples in float lanes: v holds position, normal (not normalized) and
-    colour; out[channel][lane] the lit colours in the canvas's units. */
-    void shadeQuad(const v_float32x4 v[9], float out[3][4]) const
+    /** terms() for four points in float lanes: v holds position and normal (not normalized). */
+    void termsQuad(const v_float32x4 v[6], v_float32x4 diffuse[3], v_float32x4 specular[3]) const
     {
         const v_float32x4 zero = v_setzero_f32(), one = v_setall_f32(1.f);
         auto inverseLength = [&](const v_float32x4& x, const v_float32x4& y,
@@ -62,7 +64,6 @@ struct Lighting {
                     vz = v_setall_f32(float(eye[2])) - pz;
         const v_float32x4 invV = inverseLength(vx, vy, vz);
         vx = vx * invV, vy = vy * invV, vz = vz * invV;
-        v_float32x4 diffuse[3], specular[3];
         for (int k = 0; k < 3; k++) {
             diffuse[k] = v_setall_f32(float(ambient[k]));
             specular[k] = zero;
@@ -107,6 +108,15 @@ struct Lighting {
                 specular[k] = specular[k] + intensity * highlight;
             }
         }
+    }
+
+    /** shade() for four samples in float lanes: v holds position, normal (not normalized) and
+    colour; out[channel][lane] the lit colours in the canvas's units. */
+    void shadeQuad(const v_float32x4 v[9], float out[3][4]) const
+    {
+        v_float32x4 diffuse[3], specular[3];
+        termsQuad(v, diffuse, specular);
+        const v_float32x4 zero = v_setzero_f32(), one = v_setall_f32(1.f);
         const v_float32x4 toColor = v_setall_f32(float(1.0 / unit)),
                           toUnit = v_setall_f32(float(unit));
         for (int k = 0; k < 3; k++) {
@@ -121,38 +131,49 @@ struct Lighting {
     float lanes where SIMD is built (for per-face and per-vertex lighting of big meshes). */
     void shadeMany(const float* in, float* out, int count) const
     {
-        int i = 0;
+        forPoints<9, 3>(in, out, count,
 #if OPENCV_SHADING_SIMD128
-        for (; i + 4 <= count; i += 4) {
-            float lanes[9][4];
-            for (int j = 0; j < 4; j++)
-                for (int k = 0; k < 9; k++)
-                    lanes[k][j] = in[9 * (i + j) + k];
-            v_float32x4 v[9];
-            for (int k = 0; k < 9; k++)
-                v[k] = v_load(lanes[k]);
-            float lit[3][4];
-            shadeQuad(v, lit);
-            for (int j = 0; j < 4; j++)
-                for (int k = 0; k < 3; k++)
-                    out[3 * (i + j) + k] = lit[k][j];
-        }
+                        [&](const v_float32x4 v[9], float lit[][4]) { shadeQuad(v, lit); },
 #endif
-        for (; i < count; i++) {
-            const float* p = in + 9 * i;
-            const Vec3d c = shade(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]),
-                                  Vec3d(p[6], p[7], p[8]));
-            for (int k = 0; k < 3; k++)
-                out[3 * i + k] = float(c[k]);
-        }
+                        [&](const float* p, float* o) {
+                            const Vec3d c = shade(Vec3d(p[0], p[1], p[2]),
+                                                  Vec3d(p[3], p[4], p[5]),
+                                                  Vec3d(p[6], p[7], p[8]));
+                            for (int k = 0; k < 3; k++)
+                                o[k] = float(c[k]);
+                        });
     }
 
-    /** The lit colour at world point p with normal n (unit, or zero: ambient only) and colour c,
-    both colours in the canvas's units. */
-    Vec3d shade(const Vec3d& p, const Vec3d& n, const Vec3d& color) const
+    /** terms() of `count` points: in[6 i ..] holds position and normal (unit or zero), out[6 i
+    ..] receives D then S. */
+    void termsMany(const float* in, float* out, int count) const
     {
-        const Vec3d c = color * (1.0 / unit);
-        Vec3d diffuse = ambient, specular(0, 0, 0);
+        forPoints<6, 6>(in, out, count,
+#if OPENCV_SHADING_SIMD128
+                        [&](const v_float32x4 v[6], float ds[][4]) {
+                            v_float32x4 d[3], s[3];
+                            termsQuad(v, d, s);
+                            for (int k = 0; k < 3; k++) {
+                                v_store(ds[k], d[k]);
+                                v_store(ds[3 + k], s[k]);
+                            }
+                        },
+#endif
+                        [&](const float* p, float* o) {
+                            Vec3d d, s;
+                            terms(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]), d, s);
+                            for (int k = 0; k < 3; k++) {
+                                o[k] = float(d[k]);
+                                o[3 + k] = float(s[k]);
+                            }
+                        });
+    }
+
+    /** The model split as I = c D + S (before clamping) at world point p with normal n (unit,
+    or zero: ambient only): D the ambient and diffuse factor, S the highlight, per channel. */
+    void terms(const Vec3d& p, const Vec3d& n, Vec3d& diffuse, Vec3d& specular) const
+    {
+        diffuse = ambient, specular = Vec3d(0, 0, 0);
         const Vec3d toEye = eye - p;
         const double eyeLength = std::sqrt(toEye.dot(toEye));
         const Vec3d v = eyeLength > 0 ? toEye * (1.0 / eyeLength) : Vec3d(0, 0, 0);
@@ -171,10 +192,54 @@ struct Lighting {
             if (rv > 0)
                 specular += light.intensity * (ks * power(rv));
         }
+    }
+
+    /** The lit colour at world point p with normal n (unit, or zero: ambient only) and colour c,
+    both colours in the canvas's units. */
+    Vec3d shade(const Vec3d& p, const Vec3d& n, const Vec3d& color) const
+    {
+        Vec3d diffuse, specular;
+        terms(p, n, diffuse, specular);
         Vec3d out;
         for (int k = 0; k < 3; k++)
-            out[k] = std::min(std::max(c[k] * diffuse[k] + specular[k], 0.0), 1.0) * unit;
+            out[k] = combine(color[k], diffuse[k], specular[k]);
         return out;
+    }
+
+    //! clamp(c D + S) in the canvas's units, for c in the canvas's units.
+    double combine(double c, double diffuse, double specular) const
+    {
+        return std::min(std::max(c * (1.0 / unit) * diffuse + specular, 0.0), 1.0) * unit;
+    }
+
+private:
+    /** Runs quad() on four points at a time (lanes transposed) where SIMD is built, one() on
+    the rest: kIn floats in and kOut out per point. */
+    template <int kIn, int kOut, class... Fns>
+    static void forPoints(const float* in, float* out, int count, Fns&&... fns)
+    {
+        auto fnList = std::forward_as_tuple(fns...);
+        int i = 0;
+#if OPENCV_SHADING_SIMD128
+        auto& quad = std::get<0>(fnList);
+        for (; i + 4 <= count; i += 4) {
+            float lanes[kIn][4];
+            for (int j = 0; j < 4; j++)
+                for (int k = 0; k < kIn; k++)
+                    lanes[k][j] = in[kIn * (i + j) + k];
+            v_float32x4 v[kIn];
+            for (int k = 0; k < kIn; k++)
+                v[k] = v_load(lanes[k]);
+            float result[kOut][4];
+            quad(v, result);
+            for (int j = 0; j < 4; j++)
+                for (int k = 0; k < kOut; k++)
+                    out[kOut * (i + j) + k] = result[k][j];
+        }
+#endif
+        auto& one = std::get<sizeof...(Fns) - 1>(fnList);
+        for (; i < count; i++)
+            one(in + kIn * i, out + kOut * i);
     }
 };
 
@@ -233,30 +298,96 @@ struct LitQuad {
     }
 };
 
-/** What the 3D shaders write besides the canvas, and the lighting they use. */
+/** What the 3D shaders write besides the canvas, and the lighting and texture they use. */
 struct DepthTargets {
     uchar* depth = nullptr;  //!< CV_32FC1 rows, canvas-sized; null: not written
     size_t depthStep = 0;
     uchar* ids = nullptr;    //!< CV_32SC1 rows; null: not written
     size_t idsStep = 0;
     const Lighting* lighting = nullptr;
+    //! Textured surfaces: the texture, in the canvas's units (the one of the canvas's type).
+    const RemapSampler<uchar>* sampler8u = nullptr;
+    const RemapSampler<float>* sampler32f = nullptr;
+
+    template <typename T>
+    const RemapSampler<T>& sampler() const
+    {
+        if constexpr (std::is_same<T, uchar>::value)
+            return *sampler8u;
+        else
+            return *sampler32f;
+    }
 };
+
+/** How a face colours its samples, and the per-vertex attributes it interpolates for that. */
+enum class Surface {
+    kFlat,               //!< one colour per face (no attributes)
+    kGouraud,            //!< colour (3): vertex colours, lit or as given
+    kPhong,              //!< position, normal, colour (9), lit at the sample
+    kTextured,           //!< texture coordinate (2), the texel as sampled (unlit)
+    kTexturedFaceLit,    //!< texture coordinate (2), lit by the face's D and S (flat)
+    kTexturedVertexLit,  //!< texture coordinate, D, S (8): lit by interpolated D, S (Gouraud)
+    kTexturedSampleLit   //!< texture coordinate, position, normal (8), lit at the sample (Phong)
+};
+
+constexpr int attributeCount(Surface s)
+{
+    return s == Surface::kFlat ? 0
+         : s == Surface::kGouraud ? 3
+         : s == Surface::kPhong ? 9
+         : s == Surface::kTextured || s == Surface::kTexturedFaceLit ? 2
+         : 8;
+}
+
+//! Surfaces lit per sample: their samples go through LitQuad, and through deferred shading.
+constexpr bool litPerSample(Surface s)
+{
+    return s == Surface::kPhong || s == Surface::kTexturedSampleLit;
+}
+
+/** Colours a sample from its interpolated attributes `a` (attributeCount(kSurface) values), or
+queues it in `quad` to be lit (litPerSample). Not for kFlat or kTexturedFaceLit, whose colour
+or lighting belongs to the face. */
+template <typename T, Surface kSurface>
+inline void shadeAttributes(T* pixel, const float* a, const DepthTargets& targets,
+                            LitQuad<T>& quad)
+{
+    if constexpr (kSurface == Surface::kGouraud) {
+        for (int k = 0; k < 3; k++)
+            pixel[k] = toChannel<T>(a[k]);
+    } else if constexpr (kSurface == Surface::kPhong) {
+        quad.add(pixel, a, *targets.lighting);
+    } else if constexpr (kSurface == Surface::kTextured) {
+        targets.sampler<T>().sample(a[0], a[1], pixel);
+    } else if constexpr (kSurface == Surface::kTexturedVertexLit) {
+        T texel[3];
+        targets.sampler<T>().sample(a[0], a[1], texel);
+        for (int k = 0; k < 3; k++)
+            pixel[k] = toChannel<T>(float(targets.lighting->combine(texel[k], a[2 + k], a[5 + k])));
+    } else if constexpr (kSurface == Surface::kTexturedSampleLit) {
+        T texel[3];
+        targets.sampler<T>().sample(a[0], a[1], texel);
+        const float v[9] = {a[2], a[3], a[4], a[5], a[6], a[7],
+                            float(texel[0]), float(texel[1]), float(texel[2])};
+        quad.add(pixel, v, *targets.lighting);
+    }
+}
 
 /** Shades a triangle of the projected mesh. Per sample: the screen-space weights w_i, their
 perspective-correct form q_i = (w_i / z_i) / sum_j (w_j / z_j) and the depth
-1 / sum_j (w_j / z_j); then the z-buffer test, and the colour:
-- kAttributes 0: a constant colour (flat);
-- 3: the interpolated colour (Gouraud: vertex colours lit or as given);
-- 9: interpolated world position, normal and colour, lit at the sample (Phong).
-w_i / z_i is affine in screen space: each span starts from the exact weights (ExactWeights) and
-steps by its x-gradient, so a sample's values depend only on the face and its span. */
-template <typename T, int kAttributes>
+1 / sum_j (w_j / z_j); then the z-buffer test, and the colour (see Surface): the attributes
+interpolated with q, then shadeAttributes. w_i / z_i is affine in screen space: each span starts
+from the exact weights (ExactWeights) and steps by its x-gradient, so a sample's values depend
+only on the face and its span. */
+template <typename T, Surface kSurface>
 struct SurfaceShader {
+    static constexpr int kAttributes = attributeCount(kSurface);
     ExactWeights weights;
     double invZ[3];                                  //!< 1 / Zc per vertex, canonical order
     double stepX[3];                                 //!< d(w_i / z_i) / dx
     double attributes[3][kAttributes ? kAttributes : 1];
-    T color[3];                                      //!< kAttributes 0: the face's colour
+    T color[3];                                      //!< kFlat: the face's colour
+    float faceLight[6];                              //!< kTexturedFaceLit: the face's D, S
     const DepthTargets* targets;
     int faceId;                                      //!< in the caller's faces
     int slotOf1 = 1, slotOf2 = 2;  //!< canonical slots of the face's own vertices 1 and 2
@@ -283,16 +414,25 @@ struct SurfaceShader {
             q[i] *= invZ[i];
     }
 
-    //! Flat and Gouraud colours (Phong samples go through LitQuad).
-    void writeColor(T* pixel, const double q[3], double sum) const
+    //! The sample's colour from its q (unnormalized, `inv` = 1 / sum), or queued in `quad`.
+    void shadeSample(T* pixel, const double q[3], double inv, LitQuad<T>& quad) const
     {
-        if constexpr (kAttributes == 0) {
+        if constexpr (kSurface == Surface::kFlat) {
             pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
         } else {
-            const double inv = 1.0 / sum;
-            for (int k = 0; k < 3; k++)
-                pixel[k] = toChannel<T>(float((q[0] * attributes[0][k] + q[1] * attributes[1][k] +
-                                               q[2] * attributes[2][k]) * inv));
+            float a[kAttributes];
+            for (int k = 0; k < kAttributes; k++)
+                a[k] = float((q[0] * attributes[0][k] + q[1] * attributes[1][k] +
+                              q[2] * attributes[2][k]) * inv);
+            if constexpr (kSurface == Surface::kTexturedFaceLit) {
+                T texel[3];
+                targets->sampler<T>().sample(a[0], a[1], texel);
+                for (int k = 0; k < 3; k++)
+                    pixel[k] = toChannel<T>(float(
+                        targets->lighting->combine(texel[k], faceLight[k], faceLight[3 + k])));
+            } else {
+                shadeAttributes<T, kSurface>(pixel, a, *targets, quad);
+            }
         }
     }
 
@@ -310,23 +450,15 @@ struct SurfaceShader {
         LitQuad<T> quad;
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const double sum = q[0] + q[1] + q[2];
-            const double inv = 1.0 / sum;
+            const double inv = 1.0 / (q[0] + q[1] + q[2]);
             if (depthRow)
                 depthRow[x] = float(inv);
             if (idRow)
                 idRow[x] = faceId;
-            if constexpr (kAttributes == 9) {
-                float v[9];
-                for (int k = 0; k < 9; k++)
-                    v[k] = float((q[0] * attributes[0][k] + q[1] * attributes[1][k] +
-                                  q[2] * attributes[2][k]) * inv);
-                quad.add(row + 3 * x, v, *out.lighting);
-            } else {
-                writeColor(row + 3 * x, q, sum);
-            }
+            shadeSample(row + 3 * x, q, inv, quad);
         }
-        quad.flush(*out.lighting);
+        if constexpr (litPerSample(kSurface))
+            quad.flush(*out.lighting);
     }
 
     /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
@@ -343,10 +475,10 @@ struct SurfaceShader {
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
+        LitQuad<T> quad;  // unused: surfaces lit per sample are deferred
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const double sum = q[0] + q[1] + q[2];
-            const double inv = 1.0 / sum;
+            const double inv = 1.0 / (q[0] + q[1] + q[2]);
             const float depth = float(inv);
             const float current = depthRow[x];
             if (!(depth < current || (depth == current && kept[x] > face)))
@@ -362,8 +494,8 @@ struct SurfaceShader {
             }
             if (idRow)
                 idRow[x] = faceId;
-            if constexpr (kAttributes != 9)
-                writeColor(row + 3 * x, q, sum);
+            if constexpr (!litPerSample(kSurface))
+                shadeSample(row + 3 * x, q, inv, quad);
         }
     }
 };

@@ -1,14 +1,14 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
 // Affine texture mapping on the one core: each face's spans (raster.hpp) get the texture
-// coordinate interpolated with exact weights (ExactWeights), then sampled the way cv::remap
-// samples a CV_32FC1 map (OpenCV 4.x imgwarp.cpp: remapNearest, remapBilinear), so the result
-// is remap's, pixel for pixel.
+// coordinate interpolated with exact weights (ExactWeights), then sampled as cv::remap samples
+// (texture_sampler.hpp), so the result is remap's, pixel for pixel.
 #include <opencv2/shading.hpp>
 
 #include "input.hpp"
 #include "raster.hpp"
 #include "shaders.hpp"
+#include "texture_sampler.hpp"
 
 #include <opencv2/core/utility.hpp>
 
@@ -20,134 +20,46 @@
 namespace cv {
 namespace shading {
 
+namespace detail {
+
+void checkTexture(const Mat& tex, const char* argName)
+{
+    if (tex.empty() || (tex.type() != CV_8UC3 && tex.type() != CV_32FC3) || tex.dims > 2)
+        CV_Error(Error::StsUnsupportedFormat,
+                 format("%s: expected a non-empty CV_8UC3 or CV_32FC3 image, got %s%s", argName,
+                        typeToString(tex.type()).c_str(), tex.empty() ? " (empty)" : ""));
+}
+
+void checkSampling(int interpolation, const char* interpolationName, int borderMode,
+                   const char* borderName)
+{
+    if (interpolation != INTER_NEAREST && interpolation != INTER_LINEAR)
+        CV_Error(Error::StsBadFlag,
+                 format("%s: expected INTER_NEAREST (0) or INTER_LINEAR (1), got %d",
+                        interpolationName, interpolation));
+    if (borderMode != BORDER_CONSTANT && borderMode != BORDER_REPLICATE &&
+        borderMode != BORDER_REFLECT && borderMode != BORDER_WRAP &&
+        borderMode != BORDER_REFLECT_101)
+        CV_Error(Error::StsBadFlag,
+                 format("%s: expected BORDER_CONSTANT (0), BORDER_REPLICATE (1), "
+                        "BORDER_REFLECT (2), BORDER_WRAP (3) or BORDER_REFLECT_101 (4), got %d",
+                        borderName, borderMode));
+}
+
+Mat textureInUnitsOf(const Mat& tex, int canvasDepth)
+{
+    if (tex.depth() == canvasDepth)
+        return tex;
+    Mat texels;  // [0, 1] float, 0..255 8-bit
+    tex.convertTo(texels, canvasDepth, canvasDepth == CV_8U ? 255.0 : 1.0 / 255.0);
+    return texels;
+}
+
+}  // namespace detail
+
 using namespace detail;
 
 namespace {
-
-//! remap's fixed point: coordinates in 1/32 px (INTER_TAB_SIZE), 8-bit weights out of 2^15.
-constexpr int kTabBits = 5;
-constexpr int kTabSize = 1 << kTabBits;
-constexpr int kCoefBits = 15;
-
-//! OpenCV's clip(x, a, b) in imgwarp.cpp: x clamped to [a, b - 1].
-inline int clipTo(int x, int a, int b)
-{
-    return x >= a ? (x < b ? x : b - 1) : a;
-}
-
-/** Samples a texture as cv::remap does with float maps. Coordinates are clamped to +-1e6 first:
-the same result for every |coordinate| below 2^31 (remap saturates indices to 16 bits anyway),
-and defined beyond. */
-template <typename T>
-struct RemapSampler {
-    using Acc = typename std::conditional<std::is_same<T, uchar>::value, int, float>::type;
-
-    const uchar* data;
-    size_t step;
-    int cols, rows;
-    int border;
-    bool linear;
-
-    RemapSampler(const Mat& tex, int interpolation, int borderMode)
-        : data(tex.data), step(tex.step[0]), cols(tex.cols), rows(tex.rows), border(borderMode),
-          linear(interpolation == INTER_LINEAR)
-    {
-    }
-
-    const T* texel(int x, int y) const
-    {
-        return reinterpret_cast<const T*>(data + size_t(y) * step) + 3 * x;
-    }
-
-    static float clampCoordinate(float v)
-    {
-        return std::min(std::max(v, -1e6f), 1e6f);
-    }
-
-    void sample(float u, float v, T* out) const
-    {
-        if (linear)
-            sampleLinear(clampCoordinate(u), clampCoordinate(v), out);
-        else
-            sampleNearest(clampCoordinate(u), clampCoordinate(v), out);
-    }
-
-    void sampleNearest(float u, float v, T* out) const
-    {
-        int sx = saturate_cast<short>(u), sy = saturate_cast<short>(v);  // cvRound, as remap
-        if (unsigned(sx) >= unsigned(cols) || unsigned(sy) >= unsigned(rows)) {
-            if (border == BORDER_CONSTANT) {
-                out[0] = out[1] = out[2] = T(0);
-                return;
-            }
-            if (border == BORDER_REPLICATE) {
-                sx = clipTo(sx, 0, cols);
-                sy = clipTo(sy, 0, rows);
-            } else {
-                sx = borderInterpolate(sx, cols, border);
-                sy = borderInterpolate(sy, rows, border);
-            }
-        }
-        const T* s = texel(sx, sy);
-        out[0] = s[0], out[1] = s[1], out[2] = s[2];
-    }
-
-    void sampleLinear(float u, float v, T* out) const
-    {
-        const int sx = cvRound(u * float(kTabSize)), sy = cvRound(v * float(kTabSize));
-        const int fx = sx & (kTabSize - 1), fy = sy & (kTabSize - 1);
-        const int ix = saturate_cast<short>(sx >> kTabBits);
-        const int iy = saturate_cast<short>(sy >> kTabBits);
-        // remap's BilinearTab: (1 - fy)(1 - fx), (1 - fy) fx, fy (1 - fx), fy fx at 1/32 steps,
-        // exact in float; the 8-bit table is the same times 2^15, exact integers.
-        const int gx = kTabSize - fx, gy = kTabSize - fy;
-        Acc w[4];
-        if constexpr (std::is_same<T, uchar>::value) {
-            const int scale = (1 << kCoefBits) / (kTabSize * kTabSize);
-            w[0] = Acc(gy * gx * scale), w[1] = Acc(gy * fx * scale);
-            w[2] = Acc(fy * gx * scale), w[3] = Acc(fy * fx * scale);
-        } else {
-            const float scale = 1.f / float(kTabSize * kTabSize);
-            w[0] = Acc(float(gy * gx) * scale), w[1] = Acc(float(gy * fx) * scale);
-            w[2] = Acc(float(fy * gx) * scale), w[3] = Acc(float(fy * fx) * scale);
-        }
-        static const T zero[3] = {T(0), T(0), T(0)};
-        const T *v0, *v1, *v2, *v3;
-        if (unsigned(ix) < unsigned(std::max(cols - 1, 0)) &&
-            unsigned(iy) < unsigned(std::max(rows - 1, 0))) {
-            v0 = texel(ix, iy), v1 = v0 + 3;
-            v2 = texel(ix, iy + 1), v3 = v2 + 3;
-        } else if (border == BORDER_CONSTANT &&
-                   (ix >= cols || ix + 1 < 0 || iy >= rows || iy + 1 < 0)) {
-            out[0] = out[1] = out[2] = T(0);
-            return;
-        } else if (border == BORDER_REPLICATE) {
-            const int x0 = clipTo(ix, 0, cols), x1 = clipTo(ix + 1, 0, cols);
-            const int y0 = clipTo(iy, 0, rows), y1 = clipTo(iy + 1, 0, rows);
-            v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
-        } else {
-            const int x0 = borderInterpolate(ix, cols, border);
-            const int x1 = borderInterpolate(ix + 1, cols, border);
-            const int y0 = borderInterpolate(iy, rows, border);
-            const int y1 = borderInterpolate(iy + 1, rows, border);
-            v0 = x0 >= 0 && y0 >= 0 ? texel(x0, y0) : zero;
-            v1 = x1 >= 0 && y0 >= 0 ? texel(x1, y0) : zero;
-            v2 = x0 >= 0 && y1 >= 0 ? texel(x0, y1) : zero;
-            v3 = x1 >= 0 && y1 >= 0 ? texel(x1, y1) : zero;
-        }
-        for (int k = 0; k < 3; k++) {
-            // remap's sum, in its order and type (int for 8-bit, float otherwise).
-            const Acc t = Acc(v0[k] * w[0] + v1[k] * w[1] + v2[k] * w[2] + v3[k] * w[3]);
-            if constexpr (std::is_same<T, uchar>::value)
-                out[k] = saturate_cast<uchar>((t + (1 << (kCoefBits - 1))) >> kCoefBits);
-            else
-                out[k] = t;
-        }
-    }
-};
-
-//! Largest accepted |texture coordinate|; larger (or non-finite) ones skip their face.
-constexpr double kMaxTexCoord = 1e30;
 
 //! A face ready to draw: its setup and its texture coordinates in the setup's vertex order.
 struct TexturedFace {
@@ -199,7 +111,7 @@ void drawTextured(Mat& canvas, const std::vector<Point2d>& verts, const std::vec
         const Point2d* tc[3] = {&uv[f[0]], &uv[f[1]], &uv[f[2]]};
         bool valid = true;
         for (const Point2d* q : tc)
-            valid &= std::abs(q->x) <= kMaxTexCoord && std::abs(q->y) <= kMaxTexCoord;
+            valid &= usableTexCoord(*q);
         if (!valid)
             continue;
         const FixedPoint p[3] = {snapToGrid(verts[f[0]]), snapToGrid(verts[f[1]]),
@@ -242,25 +154,10 @@ void texturedTriangles(InputOutputArray canvasArr, InputArray verts2d, InputArra
     readPoints(texCoords, "texCoords", count, uv);
     readFaces(faces, "faces", count, f);
     const Mat tex = texture.getMat();
-    if (tex.empty() || (tex.type() != CV_8UC3 && tex.type() != CV_32FC3) || tex.dims > 2)
-        CV_Error(Error::StsUnsupportedFormat,
-                 format("texture: expected a non-empty CV_8UC3 or CV_32FC3 image, got %s%s",
-                        typeToString(tex.type()).c_str(), tex.empty() ? " (empty)" : ""));
-    if (interpolation != INTER_NEAREST && interpolation != INTER_LINEAR)
-        CV_Error(Error::StsBadFlag,
-                 format("interpolation: expected INTER_NEAREST (0) or INTER_LINEAR (1), got %d",
-                        interpolation));
-    if (borderMode != BORDER_CONSTANT && borderMode != BORDER_REPLICATE &&
-        borderMode != BORDER_REFLECT && borderMode != BORDER_WRAP &&
-        borderMode != BORDER_REFLECT_101)
-        CV_Error(Error::StsBadFlag,
-                 format("borderMode: expected BORDER_CONSTANT (0), BORDER_REPLICATE (1), "
-                        "BORDER_REFLECT (2), BORDER_WRAP (3) or BORDER_REFLECT_101 (4), got %d",
-                        borderMode));
+    checkTexture(tex, "texture");
+    checkSampling(interpolation, "interpolation", borderMode, "borderMode");
     Mat canvas = canvasArr.getMat();
-    Mat texels = tex;
-    if (tex.depth() != canvas.depth())  // into the canvas's units: [0, 1] float, 0..255 8-bit
-        tex.convertTo(texels, canvas.depth(), canvas.depth() == CV_8U ? 255.0 : 1.0 / 255.0);
+    const Mat texels = textureInUnitsOf(tex, canvas.depth());
     if (canvas.depth() == CV_8U)
         drawTextured<uchar>(canvas, verts, f, uv,
                             RemapSampler<uchar>(texels, interpolation, borderMode));

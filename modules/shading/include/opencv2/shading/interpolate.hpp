@@ -42,6 +42,26 @@ CV_EXPORTS void forEachSample(Size canvasSize, InputArray vertices, const Sample
 callers that step their values along the row themselves (much faster in tight loops). */
 CV_EXPORTS void forEachSpan(Size canvasSize, InputArray vertices, const SpanCallback& fn);
 
+/** @brief #forEachSample with perspective-correct weights, for a triangle seen in 3D.
+
+`depths` are the camera depths `Zc` of the three vertices, whose projections are `vertices`.
+Coverage is #forEachSample's; the weights are the barycentric coordinates of the 3D point seen
+at the sample: `q_i = (w_i / z_i) / sum_j (w_j / z_j)` from the screen weights w, the weights
+#drawMesh3d interpolates every attribute with (its depth is `1 / sum_j (w_j / z_j)`, which is
+`interpolate(z0, z1, z2, q)` up to rounding).
+
+@param depths 3 finite values > 0, one per vertex.
+*/
+CV_EXPORTS void forEachSample(Size canvasSize, InputArray vertices, InputArray depths,
+                              const SampleCallback& fn);
+
+/** @brief #forEachSpan for a triangle seen in 3D: per span the affine quantities `h_i = w_i /
+z_i` at `(xBegin, y)` (as `w`) and their change per pixel (as `dwdx`). At a sample,
+`q_i = h_i / sum_j h_j` are #forEachSample's perspective-correct weights and `1 / sum_j h_j` its
+depth. */
+CV_EXPORTS void forEachSpan(Size canvasSize, InputArray vertices, InputArray depths,
+                            const SpanCallback& fn);
+
 /** @brief The values at three vertices interpolated with barycentric weights `w` (as given to a
 #SampleCallback): `w[0] a + w[1] b + w[2] c` in double, then converted (saturated) to T. */
 template <typename T, int n>

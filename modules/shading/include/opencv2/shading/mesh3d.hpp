@@ -6,6 +6,8 @@
 #error "include <opencv2/shading.hpp>, not this sub-header"
 #endif
 
+#include <opencv2/imgproc.hpp>
+
 #include <vector>
 
 /**
@@ -77,7 +79,7 @@ struct CV_EXPORTS_W_SIMPLE PointLight {
 //! How #drawMesh3d shades and which faces it keeps.
 struct CV_EXPORTS_W_SIMPLE RenderSettings {
     //! Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit), ambient (1, 1, 1),
-    //! ka 0.2, kd 0.7, ks 0.5, shininess 16.
+    //! ka 0.2, kd 0.7, ks 0.5, shininess 16; textures bilinear, border replicated.
     CV_WRAP RenderSettings();
     CV_PROP_RW int shadeType;    //!< #SHADE_FLAT, #SHADE_GOURAUD (default) or #SHADE_PHONG
     CV_PROP_RW int visibility;   //!< #VISIBILITY_ZBUFFER (default) or #VISIBILITY_PAINTER
@@ -90,6 +92,11 @@ struct CV_EXPORTS_W_SIMPLE RenderSettings {
     CV_PROP_RW double kd;        //!< diffuse reflectance (default 0.7)
     CV_PROP_RW double ks;        //!< specular reflectance (default 0.5)
     CV_PROP_RW double shininess; //!< Phong exponent (default 16)
+    //! #drawTexturedMesh3d: `INTER_LINEAR` (default) or `INTER_NEAREST`, as `cv::remap`'s.
+    CV_PROP_RW int textureInterpolation;
+    //! #drawTexturedMesh3d: `BORDER_REPLICATE` (default), `BORDER_CONSTANT` (black),
+    //! `BORDER_REFLECT`, `BORDER_WRAP` or `BORDER_REFLECT_101`, as `cv::remap`'s.
+    CV_PROP_RW int textureBorder;
 };
 
 /** @brief Face and vertex normals of a triangle mesh (seed 004's rule).
@@ -154,6 +161,40 @@ CV_EXPORTS_W void drawMesh3d(InputOutputArray canvas, InputArray verts3d, InputA
                              InputArray normals = noArray(),
                              InputOutputArray depthBuffer = noArray(),
                              OutputArray faceIds = noArray());
+
+/** @brief #drawMesh3d with a texture in place of the vertex colours.
+
+Everything #drawMesh3d does (camera, culling, near plane, depth, visibility, outputs) is done the
+same way, and the same samples are covered. Each covered sample's texture coordinate is the
+perspective-correct interpolation of its face's vertex `texCoords` (the weights that interpolate
+every 3D attribute), rounded to float and sampled as #texturedTriangles samples it: what
+`cv::remap` gives with `settings.textureInterpolation` and `settings.textureBorder`. The texel
+`t` (in the canvas's units) takes the vertex colour's place:
+- no lights: `t` as sampled;
+- lit, the Phong model splits into `I = c D + S` (D: ambient and diffuse factor, S: highlight,
+  per channel), and the sample gets `clamp(t D + S)`, with D and S taken per face at its 3D
+  centroid with its face normal (#SHADE_FLAT), per vertex and interpolated
+  perspective-correctly (#SHADE_GOURAUD), or at the sample itself (#SHADE_PHONG: `c = t` in
+  the lighting model). So a uniform texture of colour c gives #drawMesh3d's image for vertex
+  colours c, up to rounding, where Gouraud's vertex colours are not clamped.
+
+@param canvas,verts3d,faces,cameraMatrix,rvec,tvec,settings,normals,depthBuffer,faceIds As for
+#drawMesh3d; `settings.textureInterpolation` and `settings.textureBorder` choose the sampling.
+@param texCoords L texture coordinates (u, v), one per vertex, in texture pixels as
+#texturedTriangles takes them ((0, 0) the centre of the texture's top-left pixel). A face whose
+coordinates are not finite or exceed 1e30 is skipped. Seams need their vertices duplicated (as
+#loadMesh gives them). A file's normalized (u, v) (0 and 1 at the texture's edges, v up) are the
+pixel coordinates `(u cols - 0.5, (1 - v) rows - 0.5)`.
+@param texture `CV_8UC3` or `CV_32FC3`, not empty; a texture of the other depth than the canvas
+is converted as for #texturedTriangles.
+*/
+CV_EXPORTS_W void drawTexturedMesh3d(InputOutputArray canvas, InputArray verts3d, InputArray faces,
+                                     InputArray texCoords, InputArray texture,
+                                     InputArray cameraMatrix, InputArray rvec, InputArray tvec,
+                                     const RenderSettings& settings = RenderSettings(),
+                                     InputArray normals = noArray(),
+                                     InputOutputArray depthBuffer = noArray(),
+                                     OutputArray faceIds = noArray());
 
 //! @}
 

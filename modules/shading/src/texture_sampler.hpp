@@ -1,0 +1,162 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// Texture sampling as cv::remap does it with CV_32FC1 maps (OpenCV 4.x imgwarp.cpp:
+// remapNearest, remapBilinear), shared by texturedTriangles and drawTexturedMesh3d, and the
+// checks of their texture arguments.
+#ifndef OPENCV_SHADING_TEXTURE_SAMPLER_HPP
+#define OPENCV_SHADING_TEXTURE_SAMPLER_HPP
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+namespace cv {
+namespace shading {
+namespace detail {
+
+//! remap's fixed point: coordinates in 1/32 px (INTER_TAB_SIZE), 8-bit weights out of 2^15.
+constexpr int kTabBits = 5;
+constexpr int kTabSize = 1 << kTabBits;
+constexpr int kCoefBits = 15;
+
+//! OpenCV's clip(x, a, b) in imgwarp.cpp: x clamped to [a, b - 1].
+inline int clipTo(int x, int a, int b)
+{
+    return x >= a ? (x < b ? x : b - 1) : a;
+}
+
+/** Samples a texture as cv::remap does with float maps. Coordinates are clamped to +-1e6 first:
+the same result for every |coordinate| below 2^31 (remap saturates indices to 16 bits anyway),
+and defined beyond. */
+template <typename T>
+struct RemapSampler {
+    using Acc = typename std::conditional<std::is_same<T, uchar>::value, int, float>::type;
+
+    const uchar* data;
+    size_t step;
+    int cols, rows;
+    int border;
+    bool linear;
+
+    RemapSampler(const Mat& tex, int interpolation, int borderMode)
+        : data(tex.data), step(tex.step[0]), cols(tex.cols), rows(tex.rows), border(borderMode),
+          linear(interpolation == INTER_LINEAR)
+    {
+    }
+
+    const T* texel(int x, int y) const
+    {
+        return reinterpret_cast<const T*>(data + size_t(y) * step) + 3 * x;
+    }
+
+    static float clampCoordinate(float v)
+    {
+        return std::min(std::max(v, -1e6f), 1e6f);
+    }
+
+    void sample(float u, float v, T* out) const
+    {
+        if (linear)
+            sampleLinear(clampCoordinate(u), clampCoordinate(v), out);
+        else
+            sampleNearest(clampCoordinate(u), clampCoordinate(v), out);
+    }
+
+    void sampleNearest(float u, float v, T* out) const
+    {
+        int sx = saturate_cast<short>(u), sy = saturate_cast<short>(v);  // cvRound, as remap
+        if (unsigned(sx) >= unsigned(cols) || unsigned(sy) >= unsigned(rows)) {
+            if (border == BORDER_CONSTANT) {
+                out[0] = out[1] = out[2] = T(0);
+                return;
+            }
+            if (border == BORDER_REPLICATE) {
+                sx = clipTo(sx, 0, cols);
+                sy = clipTo(sy, 0, rows);
+            } else {
+                sx = borderInterpolate(sx, cols, border);
+                sy = borderInterpolate(sy, rows, border);
+            }
+        }
+        const T* s = texel(sx, sy);
+        out[0] = s[0], out[1] = s[1], out[2] = s[2];
+    }
+
+    void sampleLinear(float u, float v, T* out) const
+    {
+        const int sx = cvRound(u * float(kTabSize)), sy = cvRound(v * float(kTabSize));
+        const int fx = sx & (kTabSize - 1), fy = sy & (kTabSize - 1);
+        const int ix = saturate_cast<short>(sx >> kTabBits);
+        const int iy = saturate_cast<short>(sy >> kTabBits);
+        // remap's BilinearTab: (1 - fy)(1 - fx), (1 - fy) fx, fy (1 - fx), fy fx at 1/32 steps,
+        // exact in float; the 8-bit table is the same times 2^15, exact integers.
+        const int gx = kTabSize - fx, gy = kTabSize - fy;
+        Acc w[4];
+        if constexpr (std::is_same<T, uchar>::value) {
+            const int scale = (1 << kCoefBits) / (kTabSize * kTabSize);
+            w[0] = Acc(gy * gx * scale), w[1] = Acc(gy * fx * scale);
+            w[2] = Acc(fy * gx * scale), w[3] = Acc(fy * fx * scale);
+        } else {
+            const float scale = 1.f / float(kTabSize * kTabSize);
+            w[0] = Acc(float(gy * gx) * scale), w[1] = Acc(float(gy * fx) * scale);
+            w[2] = Acc(float(fy * gx) * scale), w[3] = Acc(float(fy * fx) * scale);
+        }
+        static const T zero[3] = {T(0), T(0), T(0)};
+        const T *v0, *v1, *v2, *v3;
+        if (unsigned(ix) < unsigned(std::max(cols - 1, 0)) &&
+            unsigned(iy) < unsigned(std::max(rows - 1, 0))) {
+            v0 = texel(ix, iy), v1 = v0 + 3;
+            v2 = texel(ix, iy + 1), v3 = v2 + 3;
+        } else if (border == BORDER_CONSTANT &&
+                   (ix >= cols || ix + 1 < 0 || iy >= rows || iy + 1 < 0)) {
+            out[0] = out[1] = out[2] = T(0);
+            return;
+        } else if (border == BORDER_REPLICATE) {
+            const int x0 = clipTo(ix, 0, cols), x1 = clipTo(ix + 1, 0, cols);
+            const int y0 = clipTo(iy, 0, rows), y1 = clipTo(iy + 1, 0, rows);
+            v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
+        } else {
+            const int x0 = borderInterpolate(ix, cols, border);
+            const int x1 = borderInterpolate(ix + 1, cols, border);
+            const int y0 = borderInterpolate(iy, rows, border);
+            const int y1 = borderInterpolate(iy + 1, rows, border);
+            v0 = x0 >= 0 && y0 >= 0 ? texel(x0, y0) : zero;
+            v1 = x1 >= 0 && y0 >= 0 ? texel(x1, y0) : zero;
+            v2 = x0 >= 0 && y1 >= 0 ? texel(x0, y1) : zero;
+            v3 = x1 >= 0 && y1 >= 0 ? texel(x1, y1) : zero;
+        }
+        for (int k = 0; k < 3; k++) {
+            // remap's sum, in its order and type (int for 8-bit, float otherwise).
+            const Acc t = Acc(v0[k] * w[0] + v1[k] * w[1] + v2[k] * w[2] + v3[k] * w[3]);
+            if constexpr (std::is_same<T, uchar>::value)
+                out[k] = saturate_cast<uchar>((t + (1 << (kCoefBits - 1))) >> kCoefBits);
+            else
+                out[k] = t;
+        }
+    }
+};
+
+//! Largest accepted |texture coordinate|; larger (or non-finite) ones skip their face.
+constexpr double kMaxTexCoord = 1e30;
+
+inline bool usableTexCoord(const Point2d& uv)
+{
+    return std::abs(uv.x) <= kMaxTexCoord && std::abs(uv.y) <= kMaxTexCoord;  // false for NaN
+}
+
+//! Checks a texture argument: a non-empty 2D CV_8UC3 or CV_32FC3 image.
+void checkTexture(const Mat& texture, const char* argName);
+//! Checks remap's interpolation (INTER_NEAREST, INTER_LINEAR) and border mode arguments.
+void checkSampling(int interpolation, const char* interpolationName, int borderMode,
+                   const char* borderName);
+//! The texture in the canvas's units: float in [0, 1] or 8-bit 0..255 (a view when it is already).
+Mat textureInUnitsOf(const Mat& texture, int canvasDepth);
+
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv
+
+#endif  // OPENCV_SHADING_TEXTURE_SAMPLER_HPP
