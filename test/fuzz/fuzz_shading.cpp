@@ -110,8 +110,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     (void)quiet;
     FuzzedDataProvider in(data, size);
     // flats, gouraud, drawMesh, render, drawMesh3d, lines, texturedTriangles, fillPolygons,
-    // triangulatePolygons
-    const int function = in.ConsumeIntegralInRange(0, 8);
+    // triangulatePolygons, drawTexturedMesh3d, forEachSample with depths
+    const int function = in.ConsumeIntegralInRange(0, 10);
     static const int kTypes[] = {CV_32FC3, CV_8UC3, CV_32FC3, CV_8UC3, CV_8UC1, CV_64FC3, CV_32FC4};
     const int type = kTypes[in.ConsumeIntegralInRange(0, 6)];
     const int width = in.ConsumeIntegralInRange(0, 40), height = in.ConsumeIntegralInRange(0, 40);
@@ -156,7 +156,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     cv::Vec3d rvec(0, 0, 0), tvec(0, 0, 0);
     cv::shading::RenderSettings settings;
     cv::Mat normals, depthBuffer, faceIds;
-    if (function == 4) {
+    const bool in3d = function == 4 || function == 9;
+    if (in3d) {
         for (const cv::Point2d& p : verts)
             verts3d.emplace_back(p.x - width / 2.0, p.y - height / 2.0,
                                  in.ConsumeBool() ? in.ConsumeIntegralInRange(-5, 40) * 0.5
@@ -200,13 +201,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     // texture: every border), shadeType as the interpolation, a border mode that may be bad.
     cv::Mat texture;
     int borderMode = cv::BORDER_REPLICATE;
-    if (function == 6) {
+    if (function == 6 || function == 9) {
         texture.create(in.ConsumeIntegralInRange(0, 6), in.ConsumeIntegralInRange(0, 6),
                        in.ConsumeBool() ? CV_8UC3 : CV_32FC3);
         if (!texture.empty())
             cv::randu(texture, cv::Scalar::all(0),
                       cv::Scalar::all(texture.depth() == CV_8U ? 255 : 1));
         borderMode = in.ConsumeIntegralInRange(0, 5);
+        settings.textureInterpolation = shadeType;
+        settings.textureBorder = borderMode;
     }
 
     // Polygons: the vertex list cut into up to three contours; shadeType as the fill rule.
@@ -251,6 +254,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             cv::shading::texturedTriangles(canvas, verts, faces, verts, texture, shadeType,
                                            borderMode);
             break;
+        case 9:
+            cv::shading::drawTexturedMesh3d(canvas, verts3d, faces, verts, texture, K, rvec, tvec,
+                                            settings, normals, depthBuffer, faceIds);
+            break;
+        case 10: {
+            // The first three points with depths (possibly bad); every visited sample must lie
+            // on the canvas with finite weights summing to 1.
+            const std::vector<cv::Point2d> tri(verts.begin(), verts.begin() + std::min<size_t>(3, verts.size()));
+            cv::shading::forEachSample(canvas.size(), tri, depth, [&](int x, int y, const cv::Vec3d& w) {
+                if (x < 0 || y < 0 || x >= width || y >= height)
+                    fail("forEachSample visited a sample outside the canvas");
+                if (!(std::abs(w[0] + w[1] + w[2] - 1) < 1e-6))
+                    fail("forEachSample's perspective weights do not sum to 1");
+            });
+            break;
+        }
         default:
             cv::shading::render(verts, faces, colors, depth, rendered, shadeType, renderSize);
             if (rendered.size() != renderSize || rendered.type() != CV_32FC3)
@@ -277,7 +296,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             fail("a rejected drawMesh3d produced face ids");
         return 0;
     }
-    if (function == 4 && !faceIds.empty()) {
+    if (in3d && !faceIds.empty()) {
         // Every pixel a face coloured has a depth at or beyond the near plane (in float).
         for (int y = 0; y < faceIds.rows; y++)
             for (int x = 0; x < faceIds.cols; x++)

@@ -47,7 +47,9 @@ void walkWithWeights(Size canvasSize, InputArray vertices, bool callbackEmpty, F
     });
 }
 
-/** 1 / Zc of a triangle's three vertices, checked: `depths` holds 3 finite values > 0. */
+/** 1 / Zc of a triangle's three vertices, checked: `depths` holds 3 values in [1e-30, 1e30],
+so that w_i / z_i and their sum neither overflow nor vanish (weights are at least ~1e-25 where
+nonzero). */
 Vec3d inverseDepths(InputArray depths)
 {
     if (depths.empty())
@@ -56,9 +58,10 @@ Vec3d inverseDepths(InputArray depths)
     readDepths(depths, "depths", 3, z);
     Vec3d inv;
     for (int i = 0; i < 3; i++) {
-        if (!(z[i] > 0 && std::isfinite(z[i])))
+        if (!(z[i] >= 1e-30 && z[i] <= 1e30))
             CV_Error(Error::StsOutOfRange,
-                     format("depths: expected finite values > 0, got %g at %d", z[i], i));
+                     format("depths: expected values in [1e-30, 1e30] (camera depths > 0), got "
+                            "%g at %d", z[i], i));
         inv[i] = 1.0 / z[i];
     }
     return inv;

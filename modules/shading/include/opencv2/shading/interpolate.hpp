@@ -50,7 +50,7 @@ at the sample: `q_i = (w_i / z_i) / sum_j (w_j / z_j)` from the screen weights w
 #drawMesh3d interpolates every attribute with (its depth is `1 / sum_j (w_j / z_j)`, which is
 `interpolate(z0, z1, z2, q)` up to rounding).
 
-@param depths 3 finite values > 0, one per vertex.
+@param depths 3 camera depths in [1e-30, 1e30], one per vertex.
 */
 CV_EXPORTS void forEachSample(Size canvasSize, InputArray vertices, InputArray depths,
                               const SampleCallback& fn);
