@@ -18,3 +18,4 @@ mkdir -p out
 ./build/samples/wireframe --out out/wireframe.png "$@"
 ./build/samples/texture_demo --out out/texture_demo.png "$@"
 ./build/samples/polygon_fill --out out/polygon_fill.png "$@"
+./build/samples/textured_mesh3d --out out/textured_mesh3d.png "$@"
