@@ -41,6 +41,7 @@ const char* const kSynopsis =
     "usage: opencv_shading MESH|demo [-o out.png] [--shade flat|gouraud|phong] [--size WxH]\n"
     "       [--light x,y,z,r,g,b ...] [--background r,g,b] [--up x|y|z|-x|-y|-z]\n"
     "       [--cull none|back|front] [--painter] [--depth depth.exr|depth.png] [--ids ids.png]\n"
+    "       [--texture image.png]\n"
     "       [--show] [--turntable N --video out.mp4|frame_%03d.png]\n"
     "       (--help explains each option)\n";
 
@@ -66,6 +67,9 @@ const char* const kUsage =
     "                               background 0\n"
     "  --ids FILE.png               face index + 1 per pixel, 0 = background: 16-bit PNG for\n"
     "                               fewer than 65535 faces, else 8-bit colour, (R<<16)|(G<<8)|B\n"
+    "  --texture IMAGE              texture the mesh with IMAGE (any format cv::imread reads)\n"
+    "                               through the file's texture coordinates, repeated outside\n"
+    "                               [0, 1], bilinear; lit as the vertex colours would be\n"
     "  --show                       show the image in a window (press a key to close it)\n"
     "  --turntable N --video OUT    N views orbiting the up axis into OUT: a video (.mp4,\n"
     "                               mp4v codec) or, with a printf pattern, numbered images\n"
@@ -95,6 +99,7 @@ struct Options {
     int cullMode = sh::CULL_NONE;
     bool painter = false;
     std::string depth, ids;
+    std::string texture;
     bool show = false;
     int turntable = 0;
     std::string video;
@@ -264,6 +269,8 @@ Options parseOptions(int argc, char** argv)
             opt.ids = next();
             if (extensionOf(opt.ids) != ".png")
                 throw UsageError("--ids: expected a .png file, got '" + opt.ids + "'");
+        } else if (arg == "--texture") {
+            opt.texture = next();
         } else if (arg == "--show") {
             flag();
             opt.show = true;
@@ -307,27 +314,55 @@ Options parseOptions(int argc, char** argv)
     return opt;
 }
 
-//! The mesh as drawMesh3d takes it; colours always present (grey where the file has none).
+/** The mesh as drawMesh3d takes it; colours always present (grey where the file has none).
+Textured: the texture (RGB, float) and texCoords in its pixels. */
 struct Mesh {
     cv::Mat vertices, faces, normals, colors;
+    cv::Mat texCoords, texture;
     std::string description;
 };
 
-Mesh loadInput(const std::string& name)
+/** Reads `imagePath` as the mesh's texture; the file's normalized (u, v) (v up, 0 and 1 at the
+edges) become the texture pixels drawTexturedMesh3d takes. */
+void loadTexture(const std::string& imagePath, const cv::Mat& fileTexCoords, Mesh& m)
+{
+    if (fileTexCoords.empty())
+        throw RunError("--texture: " + m.description + " has no texture coordinates");
+    const cv::Mat bgr = cv::imread(imagePath, cv::IMREAD_COLOR);
+    if (bgr.empty())
+        throw RunError("--texture: cannot read image '" + imagePath + "'");
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);  // the library keeps RGB
+    rgb.convertTo(m.texture, CV_32F, 1.0 / 255);
+    m.texCoords.create(fileTexCoords.rows, 2, CV_32F);
+    for (int i = 0; i < fileTexCoords.rows; i++) {
+        const float* uv = fileTexCoords.ptr<float>(i);
+        m.texCoords.at<float>(i, 0) = uv[0] * m.texture.cols - 0.5f;
+        m.texCoords.at<float>(i, 1) = (1 - uv[1]) * m.texture.rows - 0.5f;
+    }
+}
+
+Mesh loadInput(const std::string& name, const std::string& texturePath)
 {
     Mesh m;
     if (name == "demo") {
+        if (!texturePath.empty())
+            throw RunError("--texture: the built-in torus knot has no texture coordinates; give "
+                           "a mesh file that has them (OBJ vt, glTF, PLY s/t, ...)");
         const shading_samples::Mesh3d knot = shading_samples::makeDemoMesh3d();
         m.vertices = knot.verts3d, m.faces = knot.faces, m.normals = knot.normals;
         m.colors = knot.vcolors;
         m.description = "built-in torus knot";
     } else {
+        cv::Mat fileTexCoords;
         try {
-            sh::loadMesh(name, m.vertices, m.faces, m.normals, m.colors);
+            sh::loadMesh(name, m.vertices, m.faces, m.normals, m.colors, fileTexCoords);
         } catch (const cv::Exception& e) {
             throw RunError(e.err);
         }
         m.description = name;
+        if (!texturePath.empty())
+            loadTexture(texturePath, fileTexCoords, m);
         if (m.colors.empty())  // neutral grey: the lights give it its shape
             m.colors = cv::Mat(m.vertices.rows, 3, CV_32F, cv::Scalar::all(0.8));
     }
@@ -433,9 +468,17 @@ Frame renderView(const Options& opt, const Mesh& mesh, const View& view, bool wa
     fr.rgb = cv::Mat(opt.size, CV_32FC3, cv::Scalar(opt.background));
     cv::TickMeter tm;
     tm.start();
-    sh::drawMesh3d(fr.rgb, mesh.vertices, mesh.faces, mesh.colors, view.K, view.rvec, view.tvec,
-                   settings, mesh.normals, fr.depth, wantIds ? cv::_OutputArray(fr.faceIds)
-                                                             : cv::_OutputArray(cv::noArray()));
+    const cv::_OutputArray ids = wantIds ? cv::_OutputArray(fr.faceIds)
+                                         : cv::_OutputArray(cv::noArray());
+    if (mesh.texture.empty()) {
+        sh::drawMesh3d(fr.rgb, mesh.vertices, mesh.faces, mesh.colors, view.K, view.rvec,
+                       view.tvec, settings, mesh.normals, fr.depth, ids);
+    } else {
+        settings.textureBorder = cv::BORDER_WRAP;  // coordinates outside [0, 1] repeat, as in GL
+        sh::drawTexturedMesh3d(fr.rgb, mesh.vertices, mesh.faces, mesh.texCoords, mesh.texture,
+                               view.K, view.rvec, view.tvec, settings, mesh.normals, fr.depth,
+                               ids);
+    }
     tm.stop();
     fr.ms = tm.getTimeMilli();
     return fr;
@@ -586,7 +629,7 @@ void runTurntable(const Options& opt, const Mesh& mesh, const cv::Vec3d& centre,
 
 int run(const Options& opt)
 {
-    const Mesh mesh = loadInput(opt.mesh);
+    const Mesh mesh = loadInput(opt.mesh, opt.texture);
     cv::Vec3d centre;
     double radius = 0;
     boundingSphere(mesh.vertices, centre, radius);

@@ -206,6 +206,44 @@ TEST_F(Cli, BadArgumentsExitTwoWithUsage)
     }
 }
 
+TEST_F(Cli, TextureThroughTheFilesCoordinates)
+{
+    // A square facing the camera's default view (front +z, up +y), its texture coordinates
+    // spanning [0, 1]; the texture's left half red, right half blue.
+    const std::string quad = path("quad.obj"), tex = path("tex.png"), png = path("quad.png");
+    std::ofstream(quad) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                           "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    cv::Mat texture(8, 8, CV_8UC3, cv::Scalar(0, 0, 255));  // BGR red
+    texture.colRange(4, 8).setTo(cv::Scalar(255, 0, 0));      // BGR blue
+    ASSERT_TRUE(cv::imwrite(tex, texture));
+    ASSERT_EQ(run({quad, "--texture", tex, "-o", png, "--size", "120x120"}), 0) << err_;
+    const cv::Mat img = cv::imread(png);
+    ASSERT_EQ(img.size(), cv::Size(120, 120));
+    // The square is seen from the front-right and above: its left part red, its right blue.
+    int redLeft = 0, blueRight = 0, wrongSide = 0;
+    for (int y = 0; y < img.rows; y++)
+        for (int x = 0; x < img.cols; x++) {
+            const cv::Vec3b p = img.at<cv::Vec3b>(y, x);
+            const bool red = p[2] > 2 * p[0] + 20, blue = p[0] > 2 * p[2] + 20;
+            redLeft += red && x < 55;
+            blueRight += blue && x > 65;
+            wrongSide += (red && x > 75) || (blue && x < 45);
+        }
+    EXPECT_GT(redLeft, 500);
+    EXPECT_GT(blueRight, 500);
+    EXPECT_EQ(wrongSide, 0);
+
+    // No texture coordinates, an unreadable image, the demo knot: clear errors, exit 1.
+    EXPECT_EQ(run({writeCube(), "--texture", tex, "-o", path("x.png")}), 1);
+    EXPECT_NE(err_.find("no texture coordinates"), std::string::npos) << err_;
+    EXPECT_EQ(run({quad, "--texture", path("missing.png"), "-o", path("x.png")}), 1);
+    EXPECT_NE(err_.find("missing.png"), std::string::npos) << err_;
+    EXPECT_EQ(run({"demo", "--texture", tex, "-o", path("x.png")}), 1);
+    EXPECT_NE(err_.find("--texture"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
 TEST_F(Cli, UnreadableMeshExitsOne)
 {
     const std::string missing = path("missing.obj");
