@@ -315,6 +315,18 @@ inline DemoOptions parseDemoOptions(int argc, char** argv, const std::string& de
     return opt;
 }
 
+/** The image at `path` as the samples keep colours (RGB, 8-bit), for textures; throws
+std::invalid_argument naming the file when it cannot be read. */
+inline cv::Mat readRgbImage(const std::string& path)
+{
+    const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+    if (bgr.empty())
+        throw std::invalid_argument("cannot read image '" + path + "'");
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    return rgb;
+}
+
 inline bool hasFlag(const DemoOptions& opt, const std::string& flag)
 {
     return std::find(opt.flags.begin(), opt.flags.end(), flag) != opt.flags.end();

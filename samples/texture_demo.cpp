@@ -13,7 +13,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -40,30 +39,24 @@ cv::Mat makeTexture()
 
 int main(int argc, char** argv)
 {
-    std::string out = "texture_demo.png", imagePath;
-    bool gui = true;
-    for (int i = 1; i < argc; i++) {
-        if (!std::strcmp(argv[i], "--no-gui"))
-            gui = false;
-        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
-            out = argv[++i];
-        else if (argv[i][0] != '-' && imagePath.empty())
-            imagePath = argv[i];
-        else {
-            std::cerr << "usage: texture_demo [image] [--out file.png] [--no-gui]\n";
-            return 2;
-        }
+    const std::string usage = "usage: texture_demo [image] [--out file.png] [--no-gui]\n";
+    shading_samples::DemoOptions opt;
+    try {
+        opt = shading_samples::parseDemoOptions(argc, argv, "texture_demo.png");
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n" << usage;
+        return 2;
     }
-    cv::Mat texture;
-    if (!imagePath.empty()) {
-        cv::Mat bgr = cv::imread(imagePath, cv::IMREAD_COLOR);
-        if (bgr.empty()) {
-            std::cerr << "error: cannot read image '" << imagePath << "'\n";
-            return 1;
-        }
-        cv::cvtColor(bgr, texture, cv::COLOR_BGR2RGB);  // the samples keep RGB
-    } else {
-        texture = makeTexture();
+    if (opt.help) {
+        std::cout << usage;
+        return 0;
+    }
+    cv::Mat texture;  // RGB, as the library's colours
+    try {
+        texture = opt.input.empty() ? makeTexture() : shading_samples::readRgbImage(opt.input);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
     }
 
     // A (n + 1) x (n + 1) vertex grid over a 400 x 400 panel, rippled; texture coordinates span
@@ -96,5 +89,5 @@ int main(int argc, char** argv)
     }
     std::cout << faces.size() << " textured triangles, " << texture.cols << "x" << texture.rows
               << " texture: nearest " << ms[0] << " ms, bilinear " << ms[1] << " ms\n";
-    return shading_samples::saveOrShow("texture_demo", img, out, gui) ? 0 : 1;
+    return shading_samples::saveOrShow("texture_demo", img, opt.out, opt.gui) ? 0 : 1;
 }

@@ -17,7 +17,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -94,30 +93,24 @@ void append(TexturedMesh& to, const TexturedMesh& m)
 
 int main(int argc, char** argv)
 {
-    std::string out = "textured_mesh3d.png", imagePath;
-    bool gui = true;
-    for (int i = 1; i < argc; i++) {
-        if (!std::strcmp(argv[i], "--no-gui"))
-            gui = false;
-        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
-            out = argv[++i];
-        else if (argv[i][0] != '-' && imagePath.empty())
-            imagePath = argv[i];
-        else {
-            std::cerr << "usage: textured_mesh3d [image] [--out file.png] [--no-gui]\n";
-            return 2;
-        }
+    const std::string usage = "usage: textured_mesh3d [image] [--out file.png] [--no-gui]\n";
+    shading_samples::DemoOptions opt;
+    try {
+        opt = shading_samples::parseDemoOptions(argc, argv, "textured_mesh3d.png");
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n" << usage;
+        return 2;
     }
-    cv::Mat texture;
-    if (!imagePath.empty()) {
-        const cv::Mat bgr = cv::imread(imagePath, cv::IMREAD_COLOR);
-        if (bgr.empty()) {
-            std::cerr << "error: cannot read image '" << imagePath << "'\n";
-            return 1;
-        }
-        cv::cvtColor(bgr, texture, cv::COLOR_BGR2RGB);  // the samples keep RGB
-    } else {
-        texture = makeTexture();
+    if (opt.help) {
+        std::cout << usage;
+        return 0;
+    }
+    cv::Mat texture;  // RGB, as the library's colours
+    try {
+        texture = opt.input.empty() ? makeTexture() : shading_samples::readRgbImage(opt.input);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
     }
 
     const cv::Size panelSize(480, 360);
@@ -166,5 +159,5 @@ int main(int argc, char** argv)
                     cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
     std::cout << scene.faces.size() << " textured faces (" << texture.cols << "x" << texture.rows
               << " texture), Phong with 2 lights: " << ms << " ms\n";
-    return shading_samples::saveOrShow("textured_mesh3d", img, out, gui) ? 0 : 1;
+    return shading_samples::saveOrShow("textured_mesh3d", img, opt.out, opt.gui) ? 0 : 1;
 }
