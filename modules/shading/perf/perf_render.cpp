@@ -16,11 +16,14 @@
 //
 // The 3D benchmarks (perf_render3d.hpp, perf_llvmpipe3d.hpp): cv::shading::drawMesh3d and
 // llvmpipe with the same lighting in GLSL on lit 3D meshes (knot3d512, torus3d2048), flat,
-// Gouraud and Phong, z-buffer and painter's; their scene names contain "3d".
+// Gouraud and Phong, z-buffer and painter's; their scene names contain "3d". Textured:
+// drawTexturedMesh3d and llvmpipeTextured on the same scenes with texture coordinates and a
+// 512 x 512 texture (bilinear, wrapped), lit the same way; their method names contain "Textured".
 //
 // Run it through run_benchmarks.sh (medians of repetitions, JSON, report.py), or directly, e.g.
 //   opencv_shading_perf --benchmark_filter='render/grid512' --benchmark_repetitions=5
 //   opencv_shading_perf --benchmark_filter=3d            # the 3D cells only
+//   opencv_shading_perf --benchmark_filter=Textured      # the textured 3D cells only
 
 #include "perf_baselines.hpp"
 #include "perf_harness.hpp"
@@ -94,6 +97,9 @@ int main(int argc, char** argv)
     const std::vector<Scene3d> scenes3d = benchmarkScenes3d();  // outlives the benchmarks
     for (const Scene3d& sc : scenes3d)
         addScene3d(sc, allThreads);
+    const std::vector<TexturedScene3d> textured3d = benchmarkTexturedScenes3d();
+    for (const TexturedScene3d& ts : textured3d)
+        addTexturedScene3d(ts, allThreads);
 
     addLineBenchmarks(allThreads);     // lines vs cv::line, textures vs remap (perf_line.hpp)
     addPolygonBenchmarks(allThreads);  // fillPolygons vs cv::fillPoly (perf_polygon.hpp)
@@ -101,6 +107,7 @@ int main(int argc, char** argv)
 #ifdef OPENCV_SHADING_PERF_LLVMPIPE
     addLlvmpipeBenchmarks(scenes);
     addLlvmpipe3dBenchmarks(scenes3d);
+    addLlvmpipeTextured3dBenchmarks(textured3d);
 #endif
 
     benchmark::RunSpecifiedBenchmarks();

@@ -7,8 +7,13 @@
 //                                         z-buffer, the CV_32F depth buffer to +inf), draw
 //   clear/SCENE/threads:1                 the clears alone: the floor
 //
+//   drawTexturedMesh3d/SCENE/SHADE/VIS/threads:N  the same with the scene's textured variant
+//                                         (makeTexturedScene3d: a 512 x 512 texture, bilinear,
+//                                         BORDER_WRAP) in place of the vertex colours
+//
 // SHADE is flat, gouraud or phong, VIS zbuffer or painter; SCENE names contain "3d", so
-// --benchmark_filter=3d selects these and llvmpipe's 3D cells (perf_llvmpipe3d.hpp) only.
+// --benchmark_filter=3d selects these and llvmpipe's 3D cells (perf_llvmpipe3d.hpp) only, and
+// --benchmark_filter=Textured the textured cells and their llvmpipe peers only.
 // Vertex normals come with the meshes (exact ones), as a static mesh's would, not per frame.
 #ifndef OPENCV_SHADING_PERF_RENDER3D_HPP
 #define OPENCV_SHADING_PERF_RENDER3D_HPP
@@ -104,6 +109,55 @@ inline void addScene3d(const Scene3d& sc, int allThreads)
     auto depth = std::make_shared<cv::Mat>();
     addNamedBenchmark("clear/" + sc.name + "/threads:1", triangles, pixels, 1,
                       [&sc, depth](cv::Mat& img) { clearCanvas3d(img, depth.get(), sc.size); });
+}
+
+//! The textured 3D benchmark scenes: benchmarkScenes3d's, textured (makeTexturedScene3d).
+inline std::vector<TexturedScene3d> benchmarkTexturedScenes3d()
+{
+    return {makeTexturedScene3d("knot3d", 512), makeTexturedScene3d("torus3d", 2048)};
+}
+
+/** One frame of drawTexturedMesh3d: clears, then draws `ts` with `shade` and `visibility`,
+sampling its CV_32FC3 texture (the canvas's units: no conversion per frame) bilinearly with
+BORDER_WRAP. As drawScene3d otherwise. */
+inline void drawTexturedScene3d(const TexturedScene3d& ts, int shade, int visibility,
+                                cv::Mat& canvas, cv::Mat& depth,
+                                cv::OutputArray faceIds = cv::noArray())
+{
+    const Scene3d& sc = ts.scene;
+    const bool zbuffer = visibility == cv::shading::VISIBILITY_ZBUFFER;
+    clearCanvas3d(canvas, zbuffer ? &depth : nullptr, sc.size);
+    cv::shading::RenderSettings settings = sc.settings;
+    settings.shadeType = shade;
+    settings.visibility = visibility;
+    settings.textureInterpolation = cv::INTER_LINEAR;
+    settings.textureBorder = cv::BORDER_WRAP;
+    const Mesh3d& m = sc.mesh;
+    cv::shading::drawTexturedMesh3d(canvas, m.verts3d, m.faces, ts.texCoords, ts.texture32f,
+                                    sc.cameraMatrix, sc.rvec, sc.tvec, settings, m.normals,
+                                    zbuffer ? cv::_InputOutputArray(depth) : cv::noArray(),
+                                    faceIds);
+}
+
+/** All drawTexturedMesh3d benchmarks of one textured scene:
+drawTexturedMesh3d/SCENE/SHADE/VIS/threads:N, lit as addScene3d's cells (the scene's three
+lights), bilinear, BORDER_WRAP. */
+inline void addTexturedScene3d(const TexturedScene3d& ts, int allThreads)
+{
+    const Scene3d& sc = ts.scene;
+    const double triangles = sc.mesh.faces.rows, pixels = double(sc.size.area());
+    for (int shade : kShades3d)
+        for (int visibility : kVisibilities)
+            for (int threads : {1, allThreads}) {
+                if (threads != 1 && allThreads == 1)
+                    continue;
+                auto depth = std::make_shared<cv::Mat>();
+                addNamedBenchmark(
+                    cellName3d("drawTexturedMesh3d", sc, shade, visibility, threads), triangles,
+                    pixels, threads, [&ts, shade, visibility, depth](cv::Mat& img) {
+                        drawTexturedScene3d(ts, shade, visibility, img, *depth);
+                    });
+            }
 }
 
 }  // namespace shading_perf

@@ -18,6 +18,9 @@
 //   knot3d    the samples' torus knot as a 3D tube (shading_samples::makeDemoMesh3d): 10,000
 //             triangles, 512 x 512
 //   torus3d   a torus of 1000 x 500 quads: 1,000,000 triangles, 2048 x 2048
+//
+// makeTexturedScene3d gives either with its seams cut, texture coordinates and a 512 x 512
+// checker texture, for cv::shading::drawTexturedMesh3d.
 #ifndef OPENCV_SHADING_PERF_SCENES_HPP
 #define OPENCV_SHADING_PERF_SCENES_HPP
 
@@ -331,6 +334,111 @@ inline Scene3d makeScene3d(const std::string& kind, int side)
                 cv::shading::PointLight(cv::Point3d(2.2, 0.4, 1.2) * scale, {0.3, 0.5, 0.85}),
                 cv::shading::PointLight(cv::Point3d(0.2, 2.5, -1.5) * scale, {0.6, 0.25, 0.3})};
     return sc;
+}
+
+/** A 3D scene with texture coordinates and a texture, for cv::shading::drawTexturedMesh3d. The
+mesh is the scene's own (same positions, normals, faces in the same order and winding, so the
+same pixels are covered) with its seams cut: both meshes are wrapped grids (vertex i * around + j,
+ring i along, j around), and here the grid has one more ring and one more column, copies of the
+first ones, which the faces that closed the tube now use. A vertex (i, j) of that
+(along + 1) x (around + 1) grid has texture coordinates (u, v) = (i repeatsU cols / along,
+j repeatsV rows / around) in texture pixels: the texture repeats repeatsU times along and
+repeatsV times around, so the coordinates run past the texture and need BORDER_WRAP (GL_REPEAT),
+and the seams are where u or v is a whole number of texture widths: no face spans them. */
+struct TexturedScene3d {
+    Scene3d scene;       //!< the seam-cut mesh; name, size, camera, lights as makeScene3d's
+    cv::Mat texCoords;   //!< L x 2 CV_32F, texture pixels ((0, 0): centre of the top-left texel)
+    cv::Mat texture8u;   //!< rows x cols CV_8UC3, RGB (the channel order of the canvas)
+    cv::Mat texture32f;  //!< texture8u / 255, CV_32FC3: the float canvas's units
+    int repeatsU = 1, repeatsV = 1;
+};
+
+namespace detail {
+
+/** A 512 x 512 texture: an 8 x 8 checker (64-texel cells) of light and dark shades of a colour
+that varies smoothly and periodically over the texture (so it tiles without a seam). */
+inline cv::Mat makeCheckerTexture(int side = 512, int cells = 8)
+{
+    cv::Mat tex(side, side, CV_8UC3);
+    const int cell = side / cells;
+    for (int y = 0; y < side; ++y) {
+        for (int x = 0; x < side; ++x) {
+            const double s = double(x) / side, t = double(y) / side;
+            const cv::Vec3f base = hue(s + 0.25 * std::sin(2.0 * CV_PI * t));  // in [0.15, 0.95]
+            const bool light = ((x / cell) + (y / cell)) % 2 == 0;
+            cv::Vec3b& out = tex.at<cv::Vec3b>(y, x);
+            for (int k = 0; k < 3; ++k) {
+                const double c = light ? 0.3 + 0.7 * base[k] : 0.35 * base[k];
+                out[k] = cv::saturate_cast<uchar>(255.0 * c);
+            }
+        }
+    }
+    return tex;
+}
+
+}  // namespace detail
+
+/** The textured variant of makeScene3d(kind, side): the knot with the texture 4 times along and
+once around the tube, the torus 4 times around its axis and twice around the tube: about 2.8
+texels to a pixel's width on the knot (minified, mostly across the thin tube; no mipmaps in
+either peer) and 0.9 on the torus (medians over the faces). Throws if the
+mesh is not a wrapped grid of two triangles per cell (the grid's `around` is read from face 0,
+which is (0, around + 1, around) for the knot and (0, around, around + 1) for the torus). */
+inline TexturedScene3d makeTexturedScene3d(const std::string& kind, int side)
+{
+    TexturedScene3d ts;
+    ts.scene = makeScene3d(kind, side);
+    ts.repeatsU = 4;
+    ts.repeatsV = kind == "knot3d" ? 1 : 2;
+    ts.texture8u = detail::makeCheckerTexture();
+    ts.texture8u.convertTo(ts.texture32f, CV_32F, 1.0 / 255.0);
+
+    Mesh3d& m = ts.scene.mesh;
+    const Mesh3d wrapped = m;  // the matrices are replaced below, not written through
+    const int count = wrapped.verts3d.rows;
+    const cv::Vec3i face0 = wrapped.faces.at<cv::Vec3i>(0);
+    const int around = std::min(face0[1], face0[2]);
+    if (face0[0] != 0 || around < 3 || count % around != 0)
+        throw std::logic_error("makeTexturedScene3d: the mesh is not a wrapped grid");
+    const int along = count / around;
+    const int columns = around + 1;
+
+    // The faces, on the cut grid: a face with corners on ring along-1 and ring 0 takes ring 0's
+    // copy (ring `along`), likewise for the columns.
+    m.faces = cv::Mat(wrapped.faces.size(), CV_32S);
+    for (int f = 0; f < wrapped.faces.rows; ++f) {
+        const cv::Vec3i face = wrapped.faces.at<cv::Vec3i>(f);
+        int i[3], j[3];
+        for (int k = 0; k < 3; ++k)
+            i[k] = face[k] / around, j[k] = face[k] % around;
+        const int iSpan = *std::max_element(i, i + 3) - *std::min_element(i, i + 3);
+        const int jSpan = *std::max_element(j, j + 3) - *std::min_element(j, j + 3);
+        const bool iWraps = iSpan == along - 1, jWraps = jSpan == around - 1;
+        if ((iSpan > 1 && !iWraps) || (jSpan > 1 && !jWraps))
+            throw std::logic_error("makeTexturedScene3d: a face is not in one grid cell");
+        cv::Vec3i& out = m.faces.at<cv::Vec3i>(f);
+        for (int k = 0; k < 3; ++k)
+            out[k] = (iWraps && i[k] == 0 ? along : i[k]) * columns +
+                     (jWraps && j[k] == 0 ? around : j[k]);
+    }
+
+    const int cutCount = (along + 1) * columns;
+    m.verts3d.create(cutCount, 3, CV_32F);
+    m.normals.create(cutCount, 3, CV_32F);
+    m.vcolors.create(cutCount, 3, CV_32F);
+    ts.texCoords.create(cutCount, 2, CV_32F);
+    const double du = double(ts.repeatsU) * ts.texture8u.cols / along;
+    const double dv = double(ts.repeatsV) * ts.texture8u.rows / around;
+    for (int i = 0; i <= along; ++i) {
+        for (int j = 0; j <= around; ++j) {
+            const int v = i * columns + j, source = (i % along) * around + j % around;
+            m.verts3d.at<cv::Vec3f>(v) = wrapped.verts3d.at<cv::Vec3f>(source);
+            m.normals.at<cv::Vec3f>(v) = wrapped.normals.at<cv::Vec3f>(source);
+            m.vcolors.at<cv::Vec3f>(v) = wrapped.vcolors.at<cv::Vec3f>(source);
+            ts.texCoords.at<cv::Vec2f>(v) = cv::Vec2f(float(i * du), float(j * dv));
+        }
+    }
+    return ts;
 }
 
 }  // namespace shading_perf
