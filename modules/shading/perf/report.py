@@ -3,8 +3,9 @@
 """Turns Google Benchmark JSON from opencv_shading_perf into a
 Markdown report on stdout: the machine, a table of median times per scene and a table of ratios,
 then the 3D section (drawMesh3d and llvmpipe per scene, shading and visibility, the ratios and
-the 3D targets). With --plots DIR and matplotlib (Debian: python3-matplotlib, for
-/usr/bin/python3) it also writes DIR/perf_vs_triangles.png and DIR/perf_vs_canvas.png (2D scenes).
+the 3D targets) and the textured 3D section (drawTexturedMesh3d and llvmpipeTextured). With
+--plots DIR and matplotlib (Debian: python3-matplotlib, for /usr/bin/python3) it also writes
+DIR/perf_vs_triangles.png and DIR/perf_vs_canvas.png (2D scenes).
 
 usage: report.py RESULTS.json [MORE.json ...] [--plots DIR]
 
@@ -87,7 +88,8 @@ class Results:
         rendered = {k[1] for k in times if k[0] == "render"}
         self.scenes = scene_order(s for s in scenes if not is_3d(s) and s in rendered)
         self.scenes3d = scene_order(s for s in scenes if is_3d(s))
-        self.all_threads = max((k[3] for k in times if k[0] in ("render", "drawMesh3d")),
+        self.all_threads = max((k[3] for k in times
+                                if k[0] in ("render", "drawMesh3d", "drawTexturedMesh3d")),
                                default=1)
 
     def get(self, method, scene, shade=None, threads=None):
@@ -100,8 +102,8 @@ class Results:
     def has(self, method):
         return any(k[0] == method for k in self.times)
 
-    def llvmpipe_threads(self):
-        return max((k[3] for k in self.times if k[0] == "llvmpipe"), default=None)
+    def llvmpipe_threads(self, method="llvmpipe"):
+        return max((k[3] for k in self.times if k[0] == method), default=None)
 
 
 def machine_lines(res):
@@ -199,6 +201,38 @@ def time_table_3d(res):
                     row += [fmt_ms(gl), fmt_ratio(gl, mine)]
                 row.append(fmt_ms(res.get("clear", s)))
                 if any(c != "–" for c in row[4:-1]):  # a filtered run: measured cells only
+                    rows.append(row)
+    return rows
+
+
+def time_table_textured_3d(res):
+    """One row per 3D scene, shading and visibility: drawTexturedMesh3d at 1 and all threads,
+    llvmpipe drawing the same textured mesh, their ratio, and drawMesh3d (vertex colours) at all
+    threads when the run measured it (what the texture costs)."""
+    n, lt = res.all_threads, res.llvmpipe_threads("llvmpipeTextured")
+    head = ["scene", "triangles", "shading", "visibility", "drawTexturedMesh3d 1 thr",
+            f"drawTexturedMesh3d {n} thr"]
+    if lt:
+        head += [f"llvmpipe textured {lt} thr", f"llvmpipe / drawTexturedMesh3d ({n} thr)"]
+    plain = res.has("drawMesh3d")  # measured in this run
+    if plain:
+        head.append(f"drawMesh3d {n} thr (untextured)")
+    rows = [head]
+    for s in res.scenes3d:
+        tri = res.counts.get(s, (None, None))[0]
+        for shade, shade_label in SHADES_3D:
+            for vis, vis_label in VISIBILITIES_3D:
+                cell = f"{shade}/{vis}"
+                mine = res.get("drawTexturedMesh3d", s, cell, n)
+                row = [s, f"{tri:,}" if tri else "?", shade_label, vis_label,
+                       fmt_ms(res.get("drawTexturedMesh3d", s, cell, 1)), fmt_ms(mine)]
+                if lt:
+                    gl = res.get("llvmpipeTextured", s, cell, lt)
+                    row += [fmt_ms(gl), fmt_ratio(gl, mine)]
+                measured = any(c != "–" for c in row[4:])  # a filtered run: measured cells only
+                if plain:
+                    row.append(fmt_ms(res.get("drawMesh3d", s, cell, n)))
+                if measured:
                     rows.append(row)
     return rows
 
@@ -357,13 +391,19 @@ def main():
         print(f"\nRatios (time of the baseline / time of render with {res.all_threads} "
               "threads; above 1: render is faster):\n")
         print(markdown(ratio_table(res)))
-    if res.scenes3d:
+    if res.scenes3d and (res.has("drawMesh3d") or res.has("llvmpipe")):
         print("\n3D: drawMesh3d and llvmpipe (the same mesh, camera and lighting formula in "
               "GLSL), three point lights; median time (ms), and llvmpipe's time / drawMesh3d's "
               f"with {res.all_threads} threads (above 1: drawMesh3d is faster):\n")
         print(markdown(time_table_3d(res)))
         print()
         print("\n".join(targets_3d(res)))
+    if res.scenes3d and (res.has("drawTexturedMesh3d") or res.has("llvmpipeTextured")):
+        print("\nTextured 3D: drawTexturedMesh3d and llvmpipe drawing the same textured mesh "
+              "(512 x 512 texture, bilinear, wrapped: BORDER_WRAP / GL_REPEAT), lit as the 3D "
+              "cells; median time (ms), and llvmpipe's time / drawTexturedMesh3d's with "
+              f"{res.all_threads} threads (above 1: drawTexturedMesh3d is faster):\n")
+        print(markdown(time_table_textured_3d(res)))
     if res.poly_scenes:
         print("\nPolygons: fillPolygons against cv::fillPoly (LINE_8, 8 fractional bits) on "
               "random star-shaped concave polygons, 1024 x 1024 CV_8UC3, and their "

@@ -6,7 +6,8 @@
 # cores, the 3D ones (drawMesh3d, --benchmark_filter=3d) about as long again.
 #
 # usage: modules/shading/perf/run_benchmarks.sh [Google Benchmark flags, e.g.
-#        --benchmark_filter=512 --benchmark_repetitions=3, or --benchmark_filter=3d: 3D only]
+#        --benchmark_filter=512 --benchmark_repetitions=3, or --benchmark_filter=3d: 3D only,
+#        --benchmark_filter='Textured|machine': the textured 3D cells only]
 # environment: BUILD_DIR (default build-perf), JOBS (build jobs, default nproc), PLOTS_DIR
 #              (default docs/perf: a filtered run's plots replace the full ones there)
 set -euo pipefail
