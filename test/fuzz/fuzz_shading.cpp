@@ -243,11 +243,30 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         case 5: cv::shading::lines(canvas, verts, colors, shadeType); break;
         case 7: cv::shading::fillPolygons(canvas, contours, polygonColor, shadeType); break;
         case 8: {
-            cv::shading::triangulatePolygons(contours, triangles, shadeType);
-            // Indices into the contours' points, concatenated.
+            cv::Mat vertices;
+            cv::shading::triangulatePolygons(contours, triangles, shadeType, vertices);
+            // Indices into the vertices: the contours' points, concatenated, then crossings.
+            if (vertices.rows < int(verts.size()) || vertices.cols != 2)
+                fail("triangulatePolygons returned fewer vertices than points");
             for (int i = 0; i < int(triangles.total() * triangles.channels()); i++)
-                if (triangles.ptr<int>()[i] < 0 || triangles.ptr<int>()[i] >= int(verts.size()))
-                    fail("triangulatePolygons produced an index outside the points");
+                if (triangles.ptr<int>()[i] < 0 || triangles.ptr<int>()[i] >= vertices.rows)
+                    fail("triangulatePolygons produced an index outside the vertices");
+            // Drawn on a canvas of this size, the triangles cover each sample at most once.
+            cv::Mat count(std::max(height, 1), std::max(width, 1), CV_32FC3, cv::Scalar::all(0));
+            for (int f = 0; f < triangles.rows; f++) {
+                std::vector<cv::Point2d> tri;
+                for (int k = 0; k < 3; k++) {
+                    const int v = triangles.ptr<int>(f)[k];
+                    tri.push_back({vertices.at<double>(v, 0), vertices.at<double>(v, 1)});
+                }
+                cv::Mat one(count.size(), CV_32FC3, cv::Scalar::all(0));
+                cv::shading::flats(one, tri, std::vector<cv::Vec3f>(3, cv::Vec3f(1, 1, 1)));
+                count += one;
+            }
+            double most = 0;
+            cv::minMaxLoc(count.reshape(1), nullptr, &most);
+            if (most > 1)
+                fail("triangulatePolygons covered a sample twice");
             break;
         }
         case 6:

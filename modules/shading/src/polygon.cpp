@@ -1,11 +1,13 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
 // Polygons (seed 003): scan conversion with an active edge table and the even-odd or nonzero
-// rule, and tessellation into triangles that cover exactly the same samples.
+// rule, and tessellation into triangles that cover the same samples (contours that cross or
+// touch go through polygon_arrangement.cpp first).
 #include <opencv2/core/utility.hpp>
 #include <opencv2/shading.hpp>
 
 #include "input.hpp"
+#include "polygon_geometry.hpp"
 #include "raster.hpp"
 #include "shaders.hpp"
 
@@ -265,40 +267,6 @@ void fillTable(Mat& canvas, const EdgeTable& table, const Scalar& color, bool ev
 
 // ---- tessellation ---------------------------------------------------------------------------
 
-struct Vtx {
-    FixedPoint p;
-    int id;  //!< index into the concatenated input points
-};
-
-inline bool same(const FixedPoint& a, const FixedPoint& b) { return a.x == b.x && a.y == b.y; }
-
-//! (b - a) x (c - a): > 0 when a, b, c turn the way a positive-area contour does.
-inline Int128 orient(const FixedPoint& a, const FixedPoint& b, const FixedPoint& c)
-{
-    return Int128(b.x - a.x) * (c.y - a.y) - Int128(b.y - a.y) * (c.x - a.x);
-}
-
-inline int signOf(Int128 v) { return (v > 0) - (v < 0); }
-
-//! q on the closed segment [a, b], given that a, b, q are collinear.
-inline bool withinBox(const FixedPoint& a, const FixedPoint& b, const FixedPoint& q)
-{
-    return std::min(a.x, b.x) <= q.x && q.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= q.y &&
-           q.y <= std::max(a.y, b.y);
-}
-
-//! Whether the closed segments [a, b] and [c, d] share a point.
-bool segmentsMeet(const FixedPoint& a, const FixedPoint& b, const FixedPoint& c,
-                  const FixedPoint& d)
-{
-    const int o1 = signOf(orient(a, b, c)), o2 = signOf(orient(a, b, d));
-    const int o3 = signOf(orient(c, d, a)), o4 = signOf(orient(c, d, b));
-    if (o1 * o2 < 0 && o3 * o4 < 0)
-        return true;
-    return (o1 == 0 && withinBox(a, b, c)) || (o2 == 0 && withinBox(a, b, d)) ||
-           (o3 == 0 && withinBox(c, d, a)) || (o4 == 0 && withinBox(c, d, b));
-}
-
 /** Drops repeated points and points collinear with their neighbours (straight runs and
 spikes): neither changes the winding number anywhere off the contour. */
 void cleanContour(std::vector<Vtx>& ring)
@@ -347,56 +315,6 @@ int windingAt(const std::vector<Vtx>& ring, const FixedPoint& q)
     return w;
 }
 
-Int128 area2(const std::vector<Vtx>& ring)
-{
-    Int128 s = 0;
-    for (size_t i = 0; i < ring.size(); i++) {
-        const FixedPoint& a = ring[i].p;
-        const FixedPoint& b = ring[(i + 1) % ring.size()].p;
-        s += Int128(a.x) * b.y - Int128(b.x) * a.y;
-    }
-    return s;
-}
-
-/** Rejects contours that cross or touch (other than consecutive edges at their shared point):
-the classification and bridging below rely on disjoint simple contours. */
-void checkNoIntersections(const std::vector<std::vector<Vtx>>& rings)
-{
-    struct Seg {
-        FixedPoint a, b;
-        int contour, index, n;
-        int64_t xMin, xMax;
-    };
-    std::vector<Seg> segs;
-    for (size_t c = 0; c < rings.size(); c++) {
-        const int n = int(rings[c].size());
-        for (int i = 0; i < n; i++) {
-            const FixedPoint& a = rings[c][size_t(i)].p;
-            const FixedPoint& b = rings[c][size_t((i + 1) % n)].p;
-            segs.push_back({a, b, int(c), i, n, std::min(a.x, b.x), std::max(a.x, b.x)});
-        }
-    }
-    std::sort(segs.begin(), segs.end(), [](const Seg& l, const Seg& r) { return l.xMin < r.xMin; });
-    for (size_t i = 0; i < segs.size(); i++) {
-        const Seg& s = segs[i];
-        for (size_t j = i + 1; j < segs.size() && segs[j].xMin <= s.xMax; j++) {
-            const Seg& t = segs[j];
-            if (s.contour == t.contour &&
-                ((s.index + 1) % s.n == t.index || (t.index + 1) % t.n == s.index))
-                continue;  // consecutive edges share their point (and are not collinear)
-            if (std::max(std::min(s.a.y, s.b.y), std::min(t.a.y, t.b.y)) >
-                std::min(std::max(s.a.y, s.b.y), std::max(t.a.y, t.b.y)))
-                continue;
-            if (segmentsMeet(s.a, s.b, t.a, t.b))
-                CV_Error(Error::StsNotImplemented,
-                         format("polygons: contour %d and contour %d cross or touch; "
-                                "self-intersecting contours are not supported by "
-                                "triangulatePolygons yet (fillPolygons draws them)",
-                                s.contour, t.contour));
-        }
-    }
-}
-
 //! Whether direction d from poly[k] points into the polygon's interior corner at poly[k].
 bool inCorner(const std::vector<Vtx>& poly, size_t k, const FixedPoint& d)
 {
@@ -413,15 +331,15 @@ bool inCorner(const std::vector<Vtx>& poly, size_t k, const FixedPoint& d)
 /** Joins `hole` (negative area) into `poly` (positive area) with a two-way bridge from the
 hole's rightmost point to the nearest polygon point the bridge reaches without meeting an edge:
 one weakly simple contour with the same winding numbers. Holes must arrive by decreasing
-rightmost x, so that unjoined holes lie left of the bridge. */
+rightmost x, so that unjoined holes lie left of the bridge. Either may pass a point twice: the
+bridge leaves from and arrives at the pass whose corner it enters. */
 void joinHole(std::vector<Vtx>& poly, std::vector<Vtx> hole)
 {
     size_t m = 0;
     for (size_t i = 1; i < hole.size(); i++)
         if (hole[i].p.x > hole[m].p.x)
             m = i;
-    std::rotate(hole.begin(), hole.begin() + std::ptrdiff_t(m), hole.end());
-    const FixedPoint M = hole[0].p;
+    const FixedPoint M = hole[m].p;
     std::vector<std::pair<Int128, size_t>> candidates;
     for (size_t k = 0; k < poly.size(); k++) {
         const FixedPoint& v = poly[k].p;
@@ -450,6 +368,12 @@ void joinHole(std::vector<Vtx>& poly, std::vector<Vtx> hole)
         }
         if (blocked)
             continue;
+        for (size_t j = 0; j < hole.size(); j++)
+            if (same(hole[j].p, M) && inCorner(hole, j, {V.x - M.x, V.y - M.y})) {
+                m = j;
+                break;
+            }
+        std::rotate(hole.begin(), hole.begin() + std::ptrdiff_t(m), hole.end());
         std::vector<Vtx> joined(poly.begin(), poly.begin() + std::ptrdiff_t(k) + 1);
         joined.insert(joined.end(), hole.begin(), hole.end());
         joined.push_back(hole[0]);
@@ -551,6 +475,51 @@ void clipEars(const std::vector<Vtx>& poly, std::vector<Vec3i>& faces)
         faces.push_back(Vec3i(poly[size_t(a)].id, poly[size_t(i)].id, poly[size_t(c)].id));
 }
 
+/** Regions of contours that neither cross nor touch: each is classified by the fill state on
+its two sides (the winding of the others is the same on both, its own adds -sign(area) inside,
+the fill's +1 per downward edge). Outers get positive area, holes negative; the rest bound
+nothing. Each hole belongs to the smallest outer around it. */
+void classifySimpleContours(std::vector<std::vector<Vtx>>& rings, bool evenOdd,
+                            std::vector<Region>& regions)
+{
+    auto rule = [&](int w) { return evenOdd ? (w & 1) != 0 : w != 0; };
+    std::vector<int> role(rings.size(), 0);  // +1 outer, -1 hole, 0 ignored
+    std::vector<Int128> areas(rings.size());
+    for (size_t c = 0; c < rings.size(); c++) {
+        areas[c] = signedArea2(rings[c]);
+        int outside = 0;
+        for (size_t d = 0; d < rings.size(); d++)
+            if (d != c)
+                outside += windingAt(rings[d], rings[c][0].p);
+        const bool filledOut = rule(outside), filledIn = rule(outside - signOf(areas[c]));
+        if (filledIn == filledOut)
+            continue;
+        role[c] = filledIn ? 1 : -1;
+    }
+    for (size_t c = 0; c < rings.size(); c++)  // after all windings are taken
+        if (role[c] != 0 && (areas[c] > 0) != (role[c] > 0)) {
+            std::reverse(rings[c].begin(), rings[c].end());
+            areas[c] = -areas[c];
+        }
+    std::vector<int> regionOf(rings.size(), -1);
+    for (size_t o = 0; o < rings.size(); o++)
+        if (role[o] == 1) {
+            regionOf[o] = int(regions.size());
+            regions.push_back({rings[o], {}});
+        }
+    for (size_t h = 0; h < rings.size(); h++) {
+        if (role[h] != -1)
+            continue;
+        size_t best = rings.size();
+        for (size_t o = 0; o < rings.size(); o++)
+            if (role[o] == 1 && windingAt(rings[o], rings[h][0].p) != 0 &&
+                (best == rings.size() || areas[o] < areas[best]))
+                best = o;
+        CV_Assert(best < rings.size());
+        regions[size_t(regionOf[best])].holes.push_back(rings[h]);
+    }
+}
+
 }  // namespace
 
 void fillPolygons(InputOutputArray canvasArr, InputArrayOfArrays polygons, const Scalar& color,
@@ -569,7 +538,8 @@ void fillPolygons(InputOutputArray canvasArr, InputArrayOfArrays polygons, const
         fillTable<float>(canvas, table, color, fillRule == FILL_EVEN_ODD);
 }
 
-void triangulatePolygons(InputArrayOfArrays polygons, OutputArray facesArr, int fillRule)
+void triangulatePolygons(InputArrayOfArrays polygons, OutputArray facesArr, int fillRule,
+                         OutputArray verticesArr)
 {
     checkFillRule(fillRule);
     Contours contours;
@@ -583,60 +553,27 @@ void triangulatePolygons(InputArrayOfArrays polygons, OutputArray facesArr, int 
         if (!ring.empty())
             rings.push_back(std::move(ring));
     }
-    checkNoIntersections(rings);
-
-    // Classify each (disjoint, simple) contour by the fill state on its two sides: the winding
-    // of the others is the same on both, its own adds -sign(area) inside (the fill's +1 per
-    // downward edge). Outers get positive area, holes negative; the rest bound nothing.
     const bool evenOdd = fillRule == FILL_EVEN_ODD;
-    auto rule = [&](int w) { return evenOdd ? (w & 1) != 0 : w != 0; };
-    std::vector<int> role(rings.size(), 0);  // +1 outer, -1 hole, 0 ignored
-    std::vector<Int128> areas(rings.size());
-    for (size_t c = 0; c < rings.size(); c++) {
-        areas[c] = area2(rings[c]);
-        int outside = 0;
-        for (size_t d = 0; d < rings.size(); d++)
-            if (d != c)
-                outside += windingAt(rings[d], rings[c][0].p);
-        const bool filledOut = rule(outside), filledIn = rule(outside - signOf(areas[c]));
-        if (filledIn == filledOut)
-            continue;
-        role[c] = filledIn ? 1 : -1;
-    }
-    for (size_t c = 0; c < rings.size(); c++)  // after all windings are taken
-        if (role[c] != 0 && (areas[c] > 0) != (role[c] > 0)) {
-            std::reverse(rings[c].begin(), rings[c].end());
-            areas[c] = -areas[c];
-        }
-    // Each hole belongs to the smallest outer around it.
-    std::vector<std::vector<size_t>> holes(rings.size());
-    for (size_t h = 0; h < rings.size(); h++) {
-        if (role[h] != -1)
-            continue;
-        size_t best = rings.size();
-        for (size_t o = 0; o < rings.size(); o++)
-            if (role[o] == 1 && windingAt(rings[o], rings[h][0].p) != 0 &&
-                (best == rings.size() || areas[o] < areas[best]))
-                best = o;
-        CV_Assert(best < rings.size());
-        holes[best].push_back(h);
-    }
+    std::vector<Region> regions;
+    std::vector<FixedPoint> added;
+    if (!arrangeContours(rings, contours.points, evenOdd, regions, added))
+        classifySimpleContours(rings, evenOdd, regions);
+
     std::vector<Vec3i> faces;
-    for (size_t o = 0; o < rings.size(); o++) {
-        if (role[o] != 1)
-            continue;
-        auto maxX = [&](size_t h) {
-            int64_t m = rings[h][0].p.x;
-            for (const Vtx& v : rings[h])
+    for (Region& region : regions) {
+        auto maxX = [](const std::vector<Vtx>& ring) {
+            int64_t m = ring[0].p.x;
+            for (const Vtx& v : ring)
                 m = std::max(m, v.p.x);
             return m;
         };
-        std::vector<size_t>& hs = holes[o];
-        std::stable_sort(hs.begin(), hs.end(),
-                         [&](size_t l, size_t r) { return maxX(l) > maxX(r); });
-        std::vector<Vtx> poly = rings[o];
-        for (size_t h : hs)
-            joinHole(poly, rings[h]);
+        std::stable_sort(region.holes.begin(), region.holes.end(),
+                         [&](const std::vector<Vtx>& l, const std::vector<Vtx>& r) {
+                             return maxX(l) > maxX(r);
+                         });
+        std::vector<Vtx> poly = region.outer;
+        for (const std::vector<Vtx>& hole : region.holes)
+            joinHole(poly, hole);
         clipEars(poly, faces);
     }
     if (facesArr.kind() == _InputArray::STD_VECTOR) {
@@ -647,6 +584,21 @@ void triangulatePolygons(InputArrayOfArrays polygons, OutputArray facesArr, int 
     if (!faces.empty()) {
         Mat dst = facesArr.getMat();
         Mat(dst.rows, dst.cols, dst.type(), faces.data()).copyTo(dst);
+    }
+    if (verticesArr.needed()) {
+        std::vector<Point2d> vertices;
+        for (const std::vector<FixedPoint>* list : {&contours.points, &added})
+            for (const FixedPoint& p : *list)
+                vertices.push_back(Point2d(double(p.x), double(p.y)) / double(kSubpixelOne));
+        if (verticesArr.kind() == _InputArray::STD_VECTOR) {
+            verticesArr.create(int(vertices.size()), 1, CV_64FC2);
+        } else {
+            verticesArr.create(int(vertices.size()), 2, CV_64F);
+        }
+        if (!vertices.empty()) {
+            Mat dst = verticesArr.getMat();
+            Mat(dst.rows, dst.cols, dst.type(), vertices.data()).copyTo(dst);
+        }
     }
 }
 

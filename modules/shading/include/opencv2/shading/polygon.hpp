@@ -63,35 +63,47 @@ saturated).
 CV_EXPORTS_W void fillPolygons(InputOutputArray canvas, InputArrayOfArrays polygons,
                                const Scalar& color, int fillRule = FILL_EVEN_ODD);
 
-/** @brief Splits polygons (holes included) into triangles that cover exactly what
+/** @brief Splits polygons (holes, crossings included) into triangles that cover what
 #fillPolygons covers.
 
-Drawn with #flats or #drawMesh (vertices: the contours' points concatenated in order), the
-triangles cover exactly the samples #fillPolygons covers with the same rule, each once. Only
-input points are used as vertices; triangles of zero area are left out, so a triangle given as
-a polygon gives one face. Contours are cleaned first (repeated points and points collinear with
-their neighbours dropped), classified by the fill rule (a contour that separates covered from
-uncovered samples bounds the shape, others are ignored), holes are bridged to their outer
-contour and the result is ear-clipped with exact integer predicates.
+Drawn with #flats or #drawMesh on `vertices`, the triangles cover each sample at most once;
+triangles of zero area are left out, so a triangle given as a polygon gives one face. Contours
+are cleaned first (repeated points and points collinear with their neighbours dropped).
+Contours that neither cross nor touch are classified by the fill rule (a contour that separates
+covered from uncovered samples bounds the shape, others are ignored); where contours cross or
+touch, edges are split where they meet and the faces of that planar arrangement get their
+winding numbers. The boundaries of the regions the rule selects have their holes bridged and
+are ear-clipped with exact integer predicates.
 
-Exactness does not rest on the ear tests: the triangles' boundaries sum to the cleaned,
-oriented contours, so their winding numbers (each 0 or 1, all triangles having positive area)
-add up to the shape's 0 or 1 at every sample: a triangulation that completes is exact. Cost:
-about O(n log n) to O(n^2) in the number of points (a uniform grid speeds up the ear tests;
-a 10,000-point star takes about 0.2 s).
+**Vertices.** The input points (snapped: multiples of 1/256 px), then one point per crossing
+the triangles use, in the order the contours first reach them. A crossing is rounded to the
+nearest 1/256 px grid point (`floor(256 v + 1/2) / 256` per coordinate), where drawing would
+snap it anyway; one that lands on an input point's position uses that point instead.
 
-Limitation: contours that cross or touch one another or themselves (other than consecutive
-edges at their shared point) are not supported yet and raise `cv::Exception` ("not supported
-by triangulatePolygons yet"); #fillPolygons draws them. (Their crossing points generally do
-not lie on the 1/256 px grid, so triangles through them could not reproduce the fill exactly.)
+**Coverage.** When every crossing lies on the grid (no crossings, contours that only touch, or
+crossings at integer or 1/256 px positions), the triangles cover exactly the samples
+#fillPolygons covers with the same rule. Otherwise the edges are snap-rounded first: each
+becomes the polyline through the grid points (vertices and rounded crossings) whose 1/256 px
+cells it passes, which moves it by at most 1/512 px in x and in y and never makes two edges
+cross; coverage then equals #fillPolygons' except possibly at samples within 1/512 px, in x and
+in y, of an input edge.
+
+Exactness does not rest on the ear tests: each region's triangles have boundaries that sum to
+its contours, so their winding numbers (each 0 or 1, all triangles having positive area) add up
+to the region's 0 or 1 at every sample: a triangulation that completes is exact. Cost: about
+O(n log n) to O(n^2) in the number of points (uniform grids speed up the crossing search and
+the ear tests; a 10,000-point star takes about 0.2 s), plus O(k log k) for k crossings.
 
 @param polygons Contours, as for #fillPolygons.
-@param faces Output K x 3 `CV_32S` indices into the contours' points concatenated in order
-(contour 0's points first).
+@param faces Output K x 3 `CV_32S` (or `std::vector<Vec3i>`) indices into `vertices`: the
+contours' points concatenated in order (contour 0's points first), then the added crossings.
 @param fillRule #FILL_EVEN_ODD or #FILL_NONZERO.
+@param vertices Optional output N x 2 `CV_64F` (or `std::vector<Point2d>`): the position of
+every vertex in pixels, the snapped input points followed by the added crossings.
 */
 CV_EXPORTS_W void triangulatePolygons(InputArrayOfArrays polygons, OutputArray faces,
-                                      int fillRule = FILL_EVEN_ODD);
+                                      int fillRule = FILL_EVEN_ODD,
+                                      OutputArray vertices = noArray());
 
 //! @}
 
