@@ -105,24 +105,35 @@ void bindPolygon(py::module_& m) {
 
     m.def(
         "triangulatePolygons",
-        [](const py::object& polygons, int fillRule) {
+        [](const py::object& polygons, int fillRule, bool returnVertices) -> py::object {
             ContourList contours = toContours(polygons);
-            cv::Mat faces;
+            cv::Mat faces, vertices;
             {
                 py::gil_scoped_release nogil;
-                sh::triangulatePolygons(contours.mats, faces, fillRule);
+                sh::triangulatePolygons(contours.mats, faces, fillRule, vertices);
             }
-            py::array_t<int32_t> out({static_cast<py::ssize_t>(faces.rows),
-                                      static_cast<py::ssize_t>(3)});
+            py::array_t<int32_t> f({static_cast<py::ssize_t>(faces.rows),
+                                    static_cast<py::ssize_t>(3)});
             if (faces.rows > 0)
-                std::memcpy(out.mutable_data(), faces.ptr<int32_t>(),
+                std::memcpy(f.mutable_data(), faces.ptr<int32_t>(),
                             sizeof(int32_t) * 3 * static_cast<size_t>(faces.rows));
-            return out;
+            if (!returnVertices)
+                return std::move(f);
+            py::array_t<double> v({static_cast<py::ssize_t>(vertices.rows),
+                                   static_cast<py::ssize_t>(2)});
+            if (vertices.rows > 0)
+                std::memcpy(v.mutable_data(), vertices.ptr<double>(),
+                            sizeof(double) * 2 * static_cast<size_t>(vertices.rows));
+            return py::make_tuple(f, v);
         },
         py::arg("polygons"),
         py::arg_v("fillRule", static_cast<int>(sh::FILL_EVEN_ODD), "FILL_EVEN_ODD"),
-        "Triangles covering exactly what fillPolygons covers with the same rule, each sample "
-        "once.\n\n"
-        "polygons: as for fillPolygons. Contours that cross or touch raise (not supported yet).\n"
-        "Returns faces, K x 3 int32 indices into the contours' points concatenated in order.");
+        py::arg("returnVertices") = false,
+        "Triangles covering what fillPolygons covers with the same rule, each sample at most "
+        "once (exactly, unless contours cross off the 1/256 px grid: then samples within "
+        "1/512 px of an edge may differ).\n\n"
+        "polygons: as for fillPolygons; contours may cross and touch.\n"
+        "Returns faces, K x 3 int32 indices into the contours' points concatenated in order, "
+        "then the added crossing points; with returnVertices=True, (faces, vertices), vertices "
+        "N x 2 float64 in pixels: the snapped points, then the crossings rounded to 1/256 px.");
 }

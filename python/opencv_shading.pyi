@@ -159,9 +159,14 @@ def fillPolygons(canvas: Canvas, polygons: Contours, color: float | Sequence[flo
     Returns canvas."""
 
 
-def triangulatePolygons(polygons: Contours, fillRule: int = ...) -> npt.NDArray[np.int32]:
-    """K x 3 int32 indices into the contours' points concatenated in order: triangles covering
-    exactly what fillPolygons covers, each sample once. Crossing or touching contours raise."""
+def triangulatePolygons(polygons: Contours, fillRule: int = ..., returnVertices: bool = ...
+                        ) -> Union[npt.NDArray[np.int32],
+                                   Tuple[npt.NDArray[np.int32], npt.NDArray[np.float64]]]:
+    """Triangles covering what fillPolygons covers, each sample at most once: faces, K x 3 int32
+    indices into the contours' points concatenated in order, then the points added where
+    contours cross; with returnVertices=True, (faces, vertices), vertices N x 2 float64 pixels
+    (the snapped points, then the crossings rounded to 1/256 px). Exact unless contours cross
+    off the 1/256 px grid; then only samples within 1/512 px of an edge may differ."""
 
 
 LINE_BRESENHAM: int

@@ -110,6 +110,31 @@ def test_triangulation_covers_exactly_once():
         [[2, 0, 1]], [[0, 1, 2]], [[1, 2, 0]])
 
 
-def test_triangulation_of_crossing_contours_raises():
-    with pytest.raises(sh.error, match="not supported"):
-        sh.triangulatePolygons([[[0, 0], [10, 10], [10, 0], [0, 10]]])
+def test_triangulation_of_a_bow_tie_adds_its_crossing():
+    bowtie = [[[2, 2], [12, 12], [12, 2], [2, 12]]]
+    for rule in (sh.FILL_EVEN_ODD, sh.FILL_NONZERO):
+        faces, vertices = sh.triangulatePolygons(bowtie, rule, returnVertices=True)
+        assert vertices.dtype == np.float64 and vertices.shape == (5, 2)
+        np.testing.assert_array_equal(vertices[:4], bowtie[0])
+        np.testing.assert_array_equal(vertices[4], [7, 7])  # on the grid: exact
+        assert sorted(sorted(f) for f in faces.tolist()) == [[0, 3, 4], [1, 2, 4]]
+        counts = coverage_counts(vertices, faces, 16, 16)
+        assert counts.max() == 1
+        np.testing.assert_array_equal(counts == 1,
+                                      mask(sh.fillPolygons(blank(16, 16), bowtie, 1, rule)))
+    # Without returnVertices: the faces alone, as before.
+    assert sh.triangulatePolygons(bowtie).shape == (2, 3)
+
+
+def test_triangulation_of_a_pentagram_by_rule():
+    a = 0.1 - np.pi / 2 + 2 * np.pi * np.array([0, 2, 4, 1, 3]) / 5
+    star = [np.stack([32 + 28 * np.cos(a), 32 + 28 * np.sin(a)], axis=1)]
+    for rule, centre, nfaces in ((sh.FILL_EVEN_ODD, 0, 5), (sh.FILL_NONZERO, 1, 8)):
+        faces, vertices = sh.triangulatePolygons(star, fillRule=rule, returnVertices=True)
+        assert vertices.shape == (10, 2) and faces.shape == (nfaces, 3)
+        np.testing.assert_array_equal(vertices[:5], np.round(star[0] * 256) / 256)
+        np.testing.assert_array_equal(vertices * 256, np.round(vertices * 256))
+        counts = coverage_counts(vertices, faces, 64, 64)
+        assert counts.max() == 1 and counts[32, 32] == centre
+        filled = mask(sh.fillPolygons(blank(64, 64), star, 1, rule))
+        assert ((counts == 1) != filled).sum() <= 2  # only samples within 1/512 px of an edge
