@@ -77,8 +77,8 @@ are ear-clipped with exact integer predicates.
 
 **Vertices.** The input points (snapped: multiples of 1/256 px), then one point per crossing
 the triangles use, in the order the contours first reach them. A crossing is rounded to the
-nearest 1/256 px grid point (`floor(256 v + 1/2) / 256` per coordinate), where drawing would
-snap it anyway; one that lands on an input point's position uses that point instead.
+nearest point of the 1/256 px grid drawing snaps vertices to (`floor(256 v + 1/2) / 256` per
+coordinate); one that lands on an input point's position uses that point instead.
 
 **Coverage.** When every crossing lies on the grid (no crossings, contours that only touch, or
 crossings at integer or 1/256 px positions), the triangles cover exactly the samples
