@@ -83,7 +83,8 @@ class Results:
         self.contexts, self.times, self.counts = contexts, times, counts
         scenes = {k[1] for k in times if k[0] != "machine" and k[0] not in POLYGON_METHODS}
         self.poly_scenes = sorted({k[1] for k in times if k[0] in POLYGON_METHODS},
-                                  key=lambda s: int(re.sub(r"\D", "", s) or 0))
+                                  key=lambda s: (s.startswith("cross"),
+                                                 int(re.sub(r"\D", "", s) or 0)))
         # 2D triangle scenes: those render drew (the lines/texture cells have scenes of their own).
         rendered = {k[1] for k in times if k[0] == "render"}
         self.scenes = scene_order(s for s in scenes if not is_3d(s) and s in rendered)
@@ -272,6 +273,12 @@ def targets_3d(res):
     return lines
 
 
+def polygon_name(scene):
+    """poly1000 -> "1,000 vertices", cross1000 -> "1,000 vertices, self-crossing"."""
+    name = f"{int(re.sub(r'[^0-9]', '', scene)):,} vertices"
+    return name + ", self-crossing" if scene.startswith("cross") else name
+
+
 def polygon_table(res):
     """fillPolygons at 1 and all threads against cv::fillPoly, per polygon size."""
     n = max((k[3] for k in res.times if k[0] == "fillPolygons"), default=1)
@@ -280,10 +287,33 @@ def polygon_table(res):
     for s in res.poly_scenes:
         ours1, oursn = res.get("fillPolygons", s, None, 1), res.get("fillPolygons", s, None, n)
         theirs = res.get("fillPoly", s, None, 1)
-        rows.append([f"{int(re.sub(r'[^0-9]', '', s)):,} vertices", fmt_ms(ours1), fmt_ms(oursn),
+        rows.append([polygon_name(s), fmt_ms(ours1), fmt_ms(oursn),
                      fmt_ms(theirs), fmt_ratio(theirs, oursn),
                      fmt_ms(res.get("triangulatePolygons", s, None, 1)),
                      fmt_ms(res.get("gluTess", s, None, 1))])
+    return rows
+
+
+def polygon_coverage_table(res):
+    """From the context's polygon_coverage/SCENE ("covered C; METHOD D T; ..."): per
+    tessellation, the samples whose coverage differs from fillPolygons' and those covered
+    twice."""
+    found = {}
+    for c in res.contexts:
+        for k, v in c.items():
+            if k.startswith("polygon_coverage/"):
+                parts = [p.split() for p in v.split(";")]
+                found[k.split("/", 1)[1]] = (int(parts[0][1]),
+                                             {p[0]: (int(p[1]), int(p[2])) for p in parts[1:]})
+    if not found:
+        return None
+    methods = [m for m in ("triangulatePolygons", "gluTess")
+               if any(m in f[1] for f in found.values())]
+    rows = [["polygon", "samples covered"] + [f"{m}: differ / covered twice" for m in methods]]
+    for s in sorted(found, key=lambda s: (s.startswith("cross"), int(re.sub(r"\D", "", s)))):
+        covered, per = found[s]
+        rows.append([polygon_name(s), f"{covered:,}"] +
+                    [("{:,} / {:,}".format(*per[m]) if m in per else "–") for m in methods])
     return rows
 
 
@@ -406,9 +436,16 @@ def main():
         print(markdown(time_table_textured_3d(res)))
     if res.poly_scenes:
         print("\nPolygons: fillPolygons against cv::fillPoly (LINE_8, 8 fractional bits) on "
-              "random star-shaped concave polygons, 1024 x 1024 CV_8UC3, and their "
+              "random star-shaped concave polygons (polyN) and self-crossing ones (crossN), "
+              "1024 x 1024 CV_8UC3, and their "
               "triangulation against GLU's tessellator; median time (ms):\n")
         print(markdown(polygon_table(res)))
+        coverage = polygon_coverage_table(res)
+        if coverage:
+            print("\nThe triangulations drawn with the library's rasterizer (the same snapped "
+                  "points; GLU's crossings from its combine callback), against fillPolygons' "
+                  "coverage, even-odd; samples:\n")
+            print(markdown(coverage))
     if args.plots and res.scenes:  # the plots are of the 2D scenes
         for path in plot(res, args.plots):
             print(f"wrote {path}", file=sys.stderr)
