@@ -348,10 +348,16 @@ void joinHole(std::vector<Vtx>& poly, std::vector<Vtx> hole)
             candidates.push_back({dx * dx + dy * dy, k});
         }
     }
-    std::sort(candidates.begin(), candidates.end());
+    // Nearest first, taken from a heap: usually the first few are visible.
+    auto farther = [](const std::pair<Int128, size_t>& l, const std::pair<Int128, size_t>& r) {
+        return l > r;
+    };
+    std::make_heap(candidates.begin(), candidates.end(), farther);
     const size_t n = poly.size();
-    for (const auto& cand : candidates) {
-        const size_t k = cand.second;
+    while (!candidates.empty()) {
+        std::pop_heap(candidates.begin(), candidates.end(), farther);
+        const size_t k = candidates.back().second;
+        candidates.pop_back();
         const FixedPoint V = poly[k].p;
         if (!inCorner(poly, k, {M.x - V.x, M.y - V.y}))
             continue;
