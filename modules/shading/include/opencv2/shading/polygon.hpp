@@ -76,7 +76,8 @@ winding numbers. The boundaries of the regions the rule selects have their holes
 are ear-clipped with exact integer predicates.
 
 **Vertices.** The input points (snapped: multiples of 1/256 px), then one point per crossing
-the triangles use, in the order the contours first reach them. A crossing is rounded to the
+the triangles use, in the order the contours first reach them (each walked from its first
+point the cleaning keeps). A crossing is rounded to the
 nearest point of the 1/256 px grid drawing snaps vertices to (`floor(256 v + 1/2) / 256` per
 coordinate); one that lands on an input point's position uses that point instead.
 
