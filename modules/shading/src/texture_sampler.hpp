@@ -57,6 +57,7 @@ struct RemapSampler {
         return std::min(std::max(v, -1e6f), 1e6f);
     }
 
+    //! The sample at map coordinate (u, v); taps outside the texture take the slower border path.
     void sample(float u, float v, T* out) const
     {
         if (linear)
@@ -67,20 +68,9 @@ struct RemapSampler {
 
     void sampleNearest(float u, float v, T* out) const
     {
-        int sx = saturate_cast<short>(u), sy = saturate_cast<short>(v);  // cvRound, as remap
-        if (unsigned(sx) >= unsigned(cols) || unsigned(sy) >= unsigned(rows)) {
-            if (border == BORDER_CONSTANT) {
-                out[0] = out[1] = out[2] = T(0);
-                return;
-            }
-            if (border == BORDER_REPLICATE) {
-                sx = clipTo(sx, 0, cols);
-                sy = clipTo(sy, 0, rows);
-            } else {
-                sx = borderInterpolate(sx, cols, border);
-                sy = borderInterpolate(sy, rows, border);
-            }
-        }
+        const int sx = saturate_cast<short>(u), sy = saturate_cast<short>(v);  // cvRound, as remap
+        if (unsigned(sx) >= unsigned(cols) || unsigned(sy) >= unsigned(rows))
+            return sampleNearestOutside(sx, sy, out);
         const T* s = texel(sx, sy);
         out[0] = s[0], out[1] = s[1], out[2] = s[2];
     }
@@ -91,6 +81,21 @@ struct RemapSampler {
         const int fx = sx & (kTabSize - 1), fy = sy & (kTabSize - 1);
         const int ix = saturate_cast<short>(sx >> kTabBits);
         const int iy = saturate_cast<short>(sy >> kTabBits);
+        if (unsigned(ix) < unsigned(std::max(cols - 1, 0)) &&
+            unsigned(iy) < unsigned(std::max(rows - 1, 0))) {
+            const T* v0 = texel(ix, iy);
+            const T* v2 = texel(ix, iy + 1);
+            blend(v0, v0 + 3, v2, v2 + 3, fx, fy, out);
+        } else {
+            sampleLinearOutside(ix, iy, fx, fy, out);
+        }
+    }
+
+private:
+    //! remap's bilinear sum of four taps with weights at 1/32 steps, in its order and type.
+    static void blend(const T* v0, const T* v1, const T* v2, const T* v3, int fx,
+                                       int fy, T* out)
+    {
         // remap's BilinearTab: (1 - fy)(1 - fx), (1 - fy) fx, fy (1 - fx), fy fx at 1/32 steps,
         // exact in float; the 8-bit table is the same times 2^15, exact integers.
         const int gx = kTabSize - fx, gy = kTabSize - fy;
@@ -104,14 +109,49 @@ struct RemapSampler {
             w[0] = Acc(float(gy * gx) * scale), w[1] = Acc(float(gy * fx) * scale);
             w[2] = Acc(float(fy * gx) * scale), w[3] = Acc(float(fy * fx) * scale);
         }
+        for (int k = 0; k < 3; k++) {
+            const Acc t = Acc(v0[k] * w[0] + v1[k] * w[1] + v2[k] * w[2] + v3[k] * w[3]);
+            if constexpr (std::is_same<T, uchar>::value)
+                out[k] = saturate_cast<uchar>((t + (1 << (kCoefBits - 1))) >> kCoefBits);
+            else
+                out[k] = t;
+        }
+    }
+
+    //! cv::borderInterpolate, with the wrap (textures' usual border) computed inline.
+    int borderIndex(int p, int length) const
+    {
+        if (border == BORDER_WRAP) {
+            p %= length;
+            return p < 0 ? p + length : p;
+        }
+        return borderInterpolate(p, length, border);
+    }
+
+    //! Taps outside the texture: its border, as remap's.
+    void sampleNearestOutside(int sx, int sy, T* out) const
+    {
+        if (border == BORDER_CONSTANT) {
+            out[0] = out[1] = out[2] = T(0);
+            return;
+        }
+        if (border == BORDER_REPLICATE) {
+            sx = clipTo(sx, 0, cols);
+            sy = clipTo(sy, 0, rows);
+        } else {
+            sx = borderIndex(sx, cols);
+            sy = borderIndex(sy, rows);
+        }
+        const T* s = texel(sx, sy);
+        out[0] = s[0], out[1] = s[1], out[2] = s[2];
+    }
+
+    void sampleLinearOutside(int ix, int iy, int fx, int fy, T* out) const
+    {
         static const T zero[3] = {T(0), T(0), T(0)};
         const T *v0, *v1, *v2, *v3;
-        if (unsigned(ix) < unsigned(std::max(cols - 1, 0)) &&
-            unsigned(iy) < unsigned(std::max(rows - 1, 0))) {
-            v0 = texel(ix, iy), v1 = v0 + 3;
-            v2 = texel(ix, iy + 1), v3 = v2 + 3;
-        } else if (border == BORDER_CONSTANT &&
-                   (ix >= cols || ix + 1 < 0 || iy >= rows || iy + 1 < 0)) {
+        if (border == BORDER_CONSTANT &&
+            (ix >= cols || ix + 1 < 0 || iy >= rows || iy + 1 < 0)) {
             out[0] = out[1] = out[2] = T(0);
             return;
         } else if (border == BORDER_REPLICATE) {
@@ -119,23 +159,14 @@ struct RemapSampler {
             const int y0 = clipTo(iy, 0, rows), y1 = clipTo(iy + 1, 0, rows);
             v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
         } else {
-            const int x0 = borderInterpolate(ix, cols, border);
-            const int x1 = borderInterpolate(ix + 1, cols, border);
-            const int y0 = borderInterpolate(iy, rows, border);
-            const int y1 = borderInterpolate(iy + 1, rows, border);
+            const int x0 = borderIndex(ix, cols), x1 = borderIndex(ix + 1, cols);
+            const int y0 = borderIndex(iy, rows), y1 = borderIndex(iy + 1, rows);
             v0 = x0 >= 0 && y0 >= 0 ? texel(x0, y0) : zero;
             v1 = x1 >= 0 && y0 >= 0 ? texel(x1, y0) : zero;
             v2 = x0 >= 0 && y1 >= 0 ? texel(x0, y1) : zero;
             v3 = x1 >= 0 && y1 >= 0 ? texel(x1, y1) : zero;
         }
-        for (int k = 0; k < 3; k++) {
-            // remap's sum, in its order and type (int for 8-bit, float otherwise).
-            const Acc t = Acc(v0[k] * w[0] + v1[k] * w[1] + v2[k] * w[2] + v3[k] * w[3]);
-            if constexpr (std::is_same<T, uchar>::value)
-                out[k] = saturate_cast<uchar>((t + (1 << (kCoefBits - 1))) >> kCoefBits);
-            else
-                out[k] = t;
-        }
+        blend(v0, v1, v2, v3, fx, fy, out);
     }
 };
 
