@@ -40,10 +40,11 @@ struct RemapSampler {
     int cols, rows;
     int border;
     bool linear;
+    double invCols, invRows;  //!< for BORDER_WRAP's remainders
 
     RemapSampler(const Mat& tex, int interpolation, int borderMode)
         : data(tex.data), step(tex.step[0]), cols(tex.cols), rows(tex.rows), border(borderMode),
-          linear(interpolation == INTER_LINEAR)
+          linear(interpolation == INTER_LINEAR), invCols(1.0 / tex.cols), invRows(1.0 / tex.rows)
     {
     }
 
@@ -118,14 +119,23 @@ private:
         }
     }
 
-    //! cv::borderInterpolate, with the wrap (textures' usual border) computed inline.
-    int borderIndex(int p, int length) const
+    /** p mod length in [0, length) for |p| <= 2^15 (remap's indices are shorts): the quotient
+    from the reciprocal is off by at most one, which the two corrections undo; no division. */
+    static int wrapIndex(int p, int length, double invLength)
     {
-        if (border == BORDER_WRAP) {
-            p %= length;
-            return p < 0 ? p + length : p;
-        }
-        return borderInterpolate(p, length, border);
+        int r = p - int(p * invLength) * length;
+        if (r < 0)
+            r += length;
+        if (r >= length)
+            r -= length;
+        return r;
+    }
+
+    //! cv::borderInterpolate, with the wrap (textures' usual border) computed inline.
+    int borderIndex(int p, int length, double invLength) const
+    {
+        return border == BORDER_WRAP ? wrapIndex(p, length, invLength)
+                                     : borderInterpolate(p, length, border);
     }
 
     //! Taps outside the texture: its border, as remap's.
@@ -139,8 +149,8 @@ private:
             sx = clipTo(sx, 0, cols);
             sy = clipTo(sy, 0, rows);
         } else {
-            sx = borderIndex(sx, cols);
-            sy = borderIndex(sy, rows);
+            sx = borderIndex(sx, cols, invCols);
+            sy = borderIndex(sy, rows, invRows);
         }
         const T* s = texel(sx, sy);
         out[0] = s[0], out[1] = s[1], out[2] = s[2];
@@ -158,9 +168,13 @@ private:
             const int x0 = clipTo(ix, 0, cols), x1 = clipTo(ix + 1, 0, cols);
             const int y0 = clipTo(iy, 0, rows), y1 = clipTo(iy + 1, 0, rows);
             v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
+        } else if (border == BORDER_WRAP) {  // each tap wrapped: the next one wraps to 0
+            const int x0 = wrapIndex(ix, cols, invCols), x1 = x0 + 1 == cols ? 0 : x0 + 1;
+            const int y0 = wrapIndex(iy, rows, invRows), y1 = y0 + 1 == rows ? 0 : y0 + 1;
+            v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
         } else {
-            const int x0 = borderIndex(ix, cols), x1 = borderIndex(ix + 1, cols);
-            const int y0 = borderIndex(iy, rows), y1 = borderIndex(iy + 1, rows);
+            const int x0 = borderIndex(ix, cols, invCols), x1 = borderIndex(ix + 1, cols, invCols);
+            const int y0 = borderIndex(iy, rows, invRows), y1 = borderIndex(iy + 1, rows, invRows);
             v0 = x0 >= 0 && y0 >= 0 ? texel(x0, y0) : zero;
             v1 = x1 >= 0 && y0 >= 0 ? texel(x1, y0) : zero;
             v2 = x0 >= 0 && y1 >= 0 ? texel(x0, y1) : zero;
