@@ -148,6 +148,26 @@ TEST(Texture, EqualsRemapWithTheSameCoordinates)
                 "boundaries)\n", total, covered);
 }
 
+TEST(Texture, FarWrappedAndReflectedCoordinatesEqualRemap)
+{
+    // Coordinates many texture widths away (up to remap's 16-bit index range): every tap wraps
+    // or reflects independently, as in remap.
+    cv::RNG rng(5);
+    const Size size(64, 48);
+    for (Size texSize : {Size(37, 29), Size(3, 7), Size(1, 1)}) {
+        Mat tex(texSize, CV_8UC3);
+        rng.fill(tex, cv::RNG::UNIFORM, 0, 256);
+        for (int border : {cv::BORDER_WRAP, cv::BORDER_REFLECT_101, cv::BORDER_REFLECT})
+            for (int interpolation : {cv::INTER_NEAREST, cv::INTER_LINEAR}) {
+                TexScene s = randomScene(rng, 8, size, texSize);
+                for (Point2d& uv : s.uv)
+                    uv = Point2d(rng.uniform(-30000.0, 30000.0), rng.uniform(-30000.0, 30000.0));
+                EXPECT_LE(compareWithRemap(s, tex, CV_8UC3, interpolation, border, size), 2)
+                    << texSize << " border " << border << " interp " << interpolation;
+            }
+    }
+}
+
 TEST(Texture, HalfPixelCoordinatesRoundAsRemap)
 {
     // Texture coordinates on exact halves (nearest: ties to even, as remap's cvRound) and on
