@@ -327,6 +327,33 @@ inline cv::Mat readRgbImage(const std::string& path)
     return rgb;
 }
 
+/** The texture samples' command line, `program [IMAGE] [--out FILE.png] [--no-gui]`: fills `opt`
+and `texture` (IMAGE read as RGB, or `makeDefault()` without one). Returns -1 to go on, else the
+exit status: 0 after --help, 2 for a bad argument, 1 for an unreadable image. */
+inline int parseTextureSampleOptions(int argc, char** argv, const std::string& program,
+                                     const std::function<cv::Mat()>& makeDefault,
+                                     DemoOptions& opt, cv::Mat& texture)
+{
+    const std::string usage = "usage: " + program + " [image] [--out file.png] [--no-gui]\n";
+    try {
+        opt = parseDemoOptions(argc, argv, program + ".png");
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n" << usage;
+        return 2;
+    }
+    if (opt.help) {
+        std::cout << usage;
+        return 0;
+    }
+    try {
+        texture = opt.input.empty() ? makeDefault() : readRgbImage(opt.input);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
+    }
+    return -1;
+}
+
 inline bool hasFlag(const DemoOptions& opt, const std::string& flag)
 {
     return std::find(opt.flags.begin(), opt.flags.end(), flag) != opt.flags.end();

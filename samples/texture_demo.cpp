@@ -39,25 +39,12 @@ cv::Mat makeTexture()
 
 int main(int argc, char** argv)
 {
-    const std::string usage = "usage: texture_demo [image] [--out file.png] [--no-gui]\n";
     shading_samples::DemoOptions opt;
-    try {
-        opt = shading_samples::parseDemoOptions(argc, argv, "texture_demo.png");
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "error: " << e.what() << "\n" << usage;
-        return 2;
-    }
-    if (opt.help) {
-        std::cout << usage;
-        return 0;
-    }
     cv::Mat texture;  // RGB, as the library's colours
-    try {
-        texture = opt.input.empty() ? makeTexture() : shading_samples::readRgbImage(opt.input);
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    }
+    const int status = shading_samples::parseTextureSampleOptions(argc, argv, "texture_demo", makeTexture,
+                                                                  opt, texture);
+    if (status >= 0)
+        return status;
 
     // A (n + 1) x (n + 1) vertex grid over a 400 x 400 panel, rippled; texture coordinates span
     // the texture twice over, so BORDER_WRAP tiles it.

@@ -93,25 +93,12 @@ void append(TexturedMesh& to, const TexturedMesh& m)
 
 int main(int argc, char** argv)
 {
-    const std::string usage = "usage: textured_mesh3d [image] [--out file.png] [--no-gui]\n";
     shading_samples::DemoOptions opt;
-    try {
-        opt = shading_samples::parseDemoOptions(argc, argv, "textured_mesh3d.png");
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "error: " << e.what() << "\n" << usage;
-        return 2;
-    }
-    if (opt.help) {
-        std::cout << usage;
-        return 0;
-    }
     cv::Mat texture;  // RGB, as the library's colours
-    try {
-        texture = opt.input.empty() ? makeTexture() : shading_samples::readRgbImage(opt.input);
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    }
+    const int status = shading_samples::parseTextureSampleOptions(argc, argv, "textured_mesh3d", makeTexture,
+                                                                  opt, texture);
+    if (status >= 0)
+        return status;
 
     const cv::Size panelSize(480, 360);
     const cv::Matx33d K(420, 0, panelSize.width / 2.0, 0, 420, panelSize.height / 2.0, 0, 0, 1);
