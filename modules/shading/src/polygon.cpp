@@ -194,10 +194,13 @@ void scanRows(const EdgeTable& table, int r0, int r1, int width, bool evenOdd, S
             // in the edges starting on this row, sorted among themselves: O(n + k log k).
             size_t kept = 0;
             for (size_t i = 0; i < active.size(); i++) {
-                if (active[i].rowEnd <= row)
+                // Stepped in a local copy: stepping in place and then copying the edge reads
+                // back the fresh stores wider than they were written, a forwarding stall.
+                ActiveEdge e = active[i];
+                if (e.rowEnd <= row)
                     continue;
-                active[i].walker.nextRow();
-                active[kept++] = active[i];
+                e.walker.nextRow();
+                active[kept++] = e;
             }
             active.resize(kept);
             sortActive(active.data(), kept);
