@@ -15,6 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -181,12 +182,20 @@ struct Segment {
     int ring, index;
 };
 
+//! A proper crossing of segments s and u, at parameter sNum / sDen along s (from s.a) and
+//! uNum / uDen along u; denominators > 0, parameters in (0, 1).
+struct Crossing {
+    int s, u;
+    Int128 sNum, sDen, uNum, uDen;
+};
+
 /** Finds the proper crossings of the edges, testing the pairs that share a grid cell (a pair
 sharing several reports its crossing from the cell that holds it only). Returns whether any two
 edges meet other than consecutive ones at their shared point; `crossings` gets the rounded
-crossing points and `exact` whether all of them were on the grid. */
+crossing points, `exact` whether all of them were on the grid and `records` the exact ones. */
 bool findCrossings(const std::vector<Segment>& segs, const std::vector<int>& ringSize,
-                   const UniformGrid& grid, std::vector<FixedPoint>& crossings, bool& exact)
+                   const UniformGrid& grid, std::vector<FixedPoint>& crossings, bool& exact,
+                   std::vector<Crossing>& records)
 {
     const int n = int(segs.size());
     std::vector<int64_t> box(4 * size_t(n));  // x min, x max, y min, y max
@@ -228,6 +237,11 @@ bool findCrossings(const std::vector<Segment>& segs, const std::vector<int>& rin
             }
             crossings.push_back({roundCrossing(s.a.x, r.x, num, den, exact),
                                  roundCrossing(s.a.y, r.y, num, den, exact)});
+            // Along t: orient(s.a, s.b, t.a + q (t.b - t.a)) = 0 at q = o1 / (o1 - o2).
+            Int128 tNum = o1, tDen = o1 - o2;
+            if (tDen < 0)
+                tNum = -tNum, tDen = -tDen;
+            records.push_back({i, j, num, den, tNum, tDen});
         } else if (!meet && segmentsMeet(s.a, s.b, t.a, t.b)) {
             meet = true;  // they touch at a vertex, which is a hot point already
         }
@@ -434,39 +448,394 @@ void joinNestedCycles(const Arrangement& g, DisjointSets& faces)
     }
 }
 
-}  // namespace
+// ---- Crossings moved to grid points, exactly (see the header comment) ----------------------
 
-bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
+//! base + delta * num / den (den > 0): a coordinate of a point on an edge, exact.
+struct Rational {
+    int64_t base, delta;
+    Int128 num, den;
+    double approx() const { return double(base) + double(delta) * (double(num) / double(den)); }
+};
+
+//! sign(r - v).
+int compareTo(const Rational& r, int64_t v)
+{
+    return compareProducts(r.delta, r.num, Int128(v) - r.base, r.den);
+}
+
+int64_t floorOf(const Rational& r)
+{
+    int64_t c = r.base + int64_t(std::floor(double(r.delta) * (double(r.num) / double(r.den))));
+    while (compareTo(r, c) < 0)
+        c--;
+    while (compareTo(r, c + 1) >= 0)
+        c++;
+    return c;
+}
+
+//! The sign of orient(a, b, q) for q on the line ab pushed by (e, e^2), e > 0 infinitely small.
+int tieSide(const FixedPoint& a, const FixedPoint& b)
+{
+    if (a.y != b.y)
+        return b.y < a.y ? 1 : -1;
+    return (b.x > a.x) - (b.x < a.x);
+}
+
+//! The sign of orient(a, b, P), P = s + (e, e^2): never 0 unless a = b.
+int sideOfSample(const FixedPoint& a, const FixedPoint& b, const FixedPoint& s)
+{
+    const int o = signOf(orient(a, b, s));
+    return o != 0 ? o : tieSide(a, b);
+}
+
+/** What edge u -> v adds to the winding number around P = s + (e, e^2): the ray from P towards
++x, an edge counting on the rows u.y <= y < v.y (+1, P on its left) or v.y <= y < u.y (-1, P on
+its right). `uBelow`: u.y <= s.y, which is u.y < P.y; likewise `vBelow`. */
+inline int crossingCount(bool uBelow, bool vBelow, int side)
+{
+    if (uBelow == vBelow)
+        return 0;
+    return uBelow ? (side > 0) : -(side < 0);
+}
+
+struct Param {
+    Int128 num, den;
+};
+
+/** Rewrites each edge (`segs`, with the proper crossings `crossings`) as the polyline through
+grid points chosen for its crossings, in order along it (`out`: the rings). Candidates are the
+grid points near each crossing, by distance, those on the side of each line through it that
+keeps the samples on that line on their side first.
+
+The choice is checked exactly. Each piece of an edge between consecutive split points moves;
+the closed loop (old piece, the move of its end, the new piece backwards, the move of its start
+backwards; a move as a horizontal then a vertical step) has, summed over all pieces, the
+winding number old - new at each sample, since the moves cancel between consecutive pieces, and
+it is 0 away from the loop. Where the sum is not 0, a moved end of the piece through that
+sample goes to its next candidate that passes the sample on the old side; where none does (the
+sample within a hair of the edge, another one on its other side further on), the piece bends
+at a grid point beside the sample. False when no choice passes within a few rounds, or the
+check would visit too many samples. */
+bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Crossing>& crossings,
+                       std::vector<std::vector<Vtx>>& out)
+{
+    const int n = int(segs.size());
+    //! A split point of an edge: its parameter and its group (the grid point it moves to).
+    struct Split {
+        int seg;
+        Param t;
+        int group;
+    };
+    auto tCompare = [](const Param& l, const Param& r) {
+        return compareProducts(l.num, r.den, r.num, l.den);
+    };
+    std::vector<Split> splits;
+    splits.reserve(2 * crossings.size());
+    for (int c = 0; c < int(crossings.size()); c++) {
+        const Crossing& x = crossings[size_t(c)];
+        splits.push_back({x.s, {x.sNum, x.sDen}, c});
+        splits.push_back({x.u, {x.uNum, x.uDen}, c});
+    }
+    std::vector<int> splitStart;
+    auto sortSplits = [&]() {
+        std::sort(splits.begin(), splits.end(), [&](const Split& l, const Split& r) {
+            return l.seg != r.seg ? l.seg < r.seg : tCompare(l.t, r.t) < 0;
+        });
+        splitStart.assign(size_t(n) + 1, 0);
+        for (const Split& i : splits)
+            splitStart[size_t(i.seg) + 1]++;
+        std::partial_sum(splitStart.begin(), splitStart.end(), splitStart.begin());
+    };
+    sortSplits();
+    // Crossings at one point (three or more edges through it) share their grid point.
+    {
+        DisjointSets samePoint(crossings.size());
+        for (size_t k = 1; k < splits.size(); k++)
+            if (splits[k].seg == splits[k - 1].seg && tCompare(splits[k - 1].t, splits[k].t) == 0)
+                samePoint.join(splits[k - 1].group, splits[k].group);
+        std::vector<int> groupOfRoot(crossings.size(), -1);
+        int groups = 0;
+        for (Split& i : splits) {
+            int& g = groupOfRoot[size_t(samePoint.find(i.group))];
+            if (g < 0)
+                g = groups++;
+            i.group = g;
+        }
+    }
+    // The check visits about (|dx| + |dy|) / 256 samples per edge with crossings: too many
+    // (edges thousands of pixels long) and snap rounding is the answer.
+    const double kBudget = double(1 << 23);
+    double estimate = 0;
+    for (int e = 0; e < n; e++)
+        if (splitStart[size_t(e)] < splitStart[size_t(e) + 1])
+            estimate += (std::fabs(double(segs[size_t(e)].b.x - segs[size_t(e)].a.x)) +
+                         std::fabs(double(segs[size_t(e)].b.y - segs[size_t(e)].a.y))) /
+                            double(kSubpixelOne) +
+                        2 * (splitStart[size_t(e) + 1] - splitStart[size_t(e)] + 1);
+    if (estimate > kBudget / 2)
+        return false;
+
+    // Candidates per group: the 8 x 8 grid points around its exact point.
+    const int side = 8, perGroup = side * side;
+    std::vector<FixedPoint> candidates;
+    std::vector<int> chosen;
+    std::vector<double> gx, gy;
+    std::vector<std::pair<std::pair<int, double>, int>> keyed;
+    // `wrongSide(q)` counts what speaks against candidate q.
+    auto addGroup = [&](const Segment& s, const Param& t, auto&& wrongSide) {
+        const Rational X = {s.a.x, s.b.x - s.a.x, t.num, t.den};
+        const Rational Y = {s.a.y, s.b.y - s.a.y, t.num, t.den};
+        gx.push_back(X.approx()), gy.push_back(Y.approx()), chosen.push_back(0);
+        const int64_t fx = floorOf(X) - (side / 2 - 1), fy = floorOf(Y) - (side / 2 - 1);
+        keyed.clear();
+        for (int k = 0; k < perGroup; k++) {
+            const FixedPoint q = {fx + k % side, fy + k / side};
+            const double dx = double(q.x) - gx.back(), dy = double(q.y) - gy.back();
+            keyed.push_back({{wrongSide(q), dx * dx + dy * dy}, k});
+        }
+        std::sort(keyed.begin(), keyed.end());
+        for (const auto& k : keyed)
+            candidates.push_back({fx + k.second % side, fy + k.second / side});
+    };
+    {
+        std::vector<std::vector<int>> lines;
+        for (const Split& i : splits) {
+            if (size_t(i.group) >= lines.size())
+                lines.resize(size_t(i.group) + 1);
+            lines[size_t(i.group)].push_back(i.seg);
+        }
+        std::vector<const Split*> first(lines.size(), nullptr);
+        for (const Split& i : splits)
+            if (!first[size_t(i.group)])
+                first[size_t(i.group)] = &i;
+        for (size_t g = 0; g < lines.size(); g++)
+            // On the wrong side of a line through the crossing, the new pieces would pass the
+            // samples on that line on the other side.
+            addGroup(segs[size_t(first[g]->seg)], first[g]->t, [&](const FixedPoint& q) {
+                int wrong = 0;
+                for (int e : lines[g])
+                    wrong += signOf(orient(segs[size_t(e)].a, segs[size_t(e)].b, q)) ==
+                             tieSide(segs[size_t(e)].a, segs[size_t(e)].b);
+                return wrong;
+            });
+    }
+    auto position = [&](int g) {
+        return candidates[size_t(g) * perGroup + size_t(chosen[size_t(g)])];
+    };
+
+    struct Entry {
+        int64_t sy, sx;
+        int delta, seg, gu, gv;  //!< the piece: its edge, its moved ends (or -1)
+        Param tu, tv;
+    };
+    std::vector<Entry> entries;
+    double visited = 0;
+    // The samples around one moved piece: per sample row, the x range of the loop's parts
+    // within a unit of the row, widened by 2 units (the doubles are off by far less).
+    auto checkPiece = [&](int e, const Param& tu, const Param& tv, const FixedPoint& u2,
+                          const FixedPoint& v2, int gu, int gv) {
+        const Segment& s = segs[size_t(e)];
+        const Rational ux = {s.a.x, s.b.x - s.a.x, tu.num, tu.den};
+        const Rational uy = {s.a.y, s.b.y - s.a.y, tu.num, tu.den};
+        const Rational vx = {s.a.x, s.b.x - s.a.x, tv.num, tv.den};
+        const Rational vy = {s.a.y, s.b.y - s.a.y, tv.num, tv.den};
+        const double px[4] = {ux.approx(), vx.approx(), double(u2.x), double(v2.x)};
+        const double py[4] = {uy.approx(), vy.approx(), double(u2.y), double(v2.y)};
+        const double ylo = std::min({py[0], py[1], py[2], py[3]}) - 1;
+        const double yhi = std::max({py[0], py[1], py[2], py[3]}) + 1;
+        const double r0 = std::ceil(ylo / double(kSubpixelOne));
+        const double r1 = std::floor(yhi / double(kSubpixelOne));
+        visited += std::max(0.0, r1 - r0 + 1);
+        if (visited > kBudget)
+            return false;
+        const int lineSide = tieSide(s.a, s.b);
+        // The loop's parts: old piece, new piece, and the two moves (in the boxes of their ends).
+        static const int parts[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
+        for (int64_t r = int64_t(r0); r <= int64_t(r1); r++) {
+            const double Y = double(r) * double(kSubpixelOne);
+            double xl = HUGE_VAL, xr = -HUGE_VAL;
+            for (int k = 0; k < 4; k++) {
+                const int i = parts[k][0], j = parts[k][1];
+                if (std::max(py[i], py[j]) < Y - 1 || std::min(py[i], py[j]) > Y + 1)
+                    continue;
+                double x0 = px[i], x1 = px[j];
+                if (k < 2 && py[i] != py[j]) {
+                    const double d = py[j] - py[i];
+                    const double t0 = std::min(1.0, std::max(0.0, (Y - 1 - py[i]) / d));
+                    const double t1 = std::min(1.0, std::max(0.0, (Y + 1 - py[i]) / d));
+                    x0 = px[i] + t0 * (px[j] - px[i]), x1 = px[i] + t1 * (px[j] - px[i]);
+                }
+                xl = std::min({xl, x0, x1}), xr = std::max({xr, x0, x1});
+            }
+            if (xl > xr)
+                continue;
+            const double c0 = std::ceil((xl - 2) / double(kSubpixelOne));
+            const double c1 = std::floor((xr + 2) / double(kSubpixelOne));
+            visited += std::max(0.0, c1 - c0 + 1);
+            if (visited > kBudget)
+                return false;
+            const int64_t sy = r * kSubpixelOne;
+            const bool uBelow = compareTo(uy, sy) <= 0, vBelow = compareTo(vy, sy) <= 0;
+            const bool u2Below = u2.y <= sy, v2Below = v2.y <= sy;
+            for (int64_t c = int64_t(c0); c <= int64_t(c1); c++) {
+                const FixedPoint S = {c * kSubpixelOne, sy};
+                // The old piece lies on line ab, in its direction: P's side is line ab's.
+                const int o = signOf(orient(s.a, s.b, S));
+                int w = crossingCount(uBelow, vBelow, o != 0 ? o : lineSide);
+                w -= crossingCount(u2Below, v2Below, sideOfSample(u2, v2, S));
+                if (S.x < v2.x)  // v -> (v2.x, v.y) -> v2, then u2 -> (u2.x, u.y) -> u
+                    w += int(vBelow) - int(v2Below);
+                if (S.x < u2.x)
+                    w += int(u2Below) - int(uBelow);
+                if (w != 0)
+                    entries.push_back({sy, S.x, w, e, gu, gv, tu, tv});
+            }
+        }
+        return true;
+    };
+
+    const Param zero = {0, 1}, one = {1, 1};
+    const size_t maxGroups = chosen.size() + 64 + chosen.size() / 4;  // bends: a few
+    for (int round = 0; round < 16; round++) {
+        entries.clear();
+        visited = 0;
+        for (int e = 0; e < n; e++) {
+            if (splitStart[size_t(e)] == splitStart[size_t(e) + 1])
+                continue;
+            const Segment& s = segs[size_t(e)];
+            Param tu = zero;
+            FixedPoint u2 = s.a;
+            int gu = -1;
+            for (int k = splitStart[size_t(e)]; k <= splitStart[size_t(e) + 1]; k++) {
+                const bool last = k == splitStart[size_t(e) + 1];
+                const int gv = last ? -1 : splits[size_t(k)].group;
+                if (!last && gv == gu)
+                    continue;  // another crossing at the same point
+                const Param tv = last ? one : splits[size_t(k)].t;
+                const FixedPoint v2 = last ? s.b : position(gv);
+                if (!checkPiece(e, tu, tv, u2, v2, gu, gv))
+                    return false;
+                tu = tv, u2 = v2, gu = gv;
+            }
+        }
+        std::sort(entries.begin(), entries.end(), [](const Entry& l, const Entry& r) {
+            return l.sy < r.sy || (l.sy == r.sy && l.sx < r.sx);
+        });
+        std::vector<uchar> moved(chosen.size(), 0);
+        bool changed = false, bent = false;
+        for (size_t i = 0; i < entries.size();) {
+            size_t j = i;
+            int sum = 0;
+            for (; j < entries.size() && entries[j].sy == entries[i].sy && entries[j].sx == entries[i].sx; j++)
+                sum += entries[j].delta;
+            if (sum == 0) {
+                i = j;
+                continue;
+            }
+            changed = true;
+            const FixedPoint S = {entries[i].sx, entries[i].sy};
+            bool fixed = false, busy = false;
+            for (size_t k = i; k < j && !fixed; k++) {
+                const Entry& en = entries[k];
+                const Segment& s = segs[size_t(en.seg)];
+                const int o = signOf(orient(s.a, s.b, S)), want = o != 0 ? o : tieSide(s.a, s.b);
+                int ends[2] = {en.gu, en.gv};
+                auto dist = [&](int g) {
+                    return g < 0 ? HUGE_VAL : std::hypot(gx[size_t(g)] - double(S.x), gy[size_t(g)] - double(S.y));
+                };
+                if (dist(ends[1]) < dist(ends[0]))
+                    std::swap(ends[0], ends[1]);
+                for (int g : ends) {
+                    if (g < 0)
+                        continue;
+                    if (moved[size_t(g)]) {
+                        busy = true;  // already moved this round: check again first
+                        continue;
+                    }
+                    const bool isU = g == en.gu;
+                    const FixedPoint other = isU ? (en.gv >= 0 ? position(en.gv) : s.b)
+                                                 : (en.gu >= 0 ? position(en.gu) : s.a);
+                    for (int c = chosen[size_t(g)] + 1; c < perGroup && !fixed; c++) {
+                        const FixedPoint q = candidates[size_t(g) * perGroup + size_t(c)];
+                        if ((isU ? sideOfSample(q, other, S) : sideOfSample(other, q, S)) == want)
+                            chosen[size_t(g)] = c, moved[size_t(g)] = 1, fixed = true;
+                    }
+                    if (fixed)
+                        break;
+                }
+            }
+            if (!fixed && !busy) {
+                // Bend the piece beside the sample: at the grid points near the sample's
+                // projection on the edge, those on the side away from the sample first.
+                const Entry& en = entries[i];
+                const Segment& s = segs[size_t(en.seg)];
+                const FixedPoint d = {s.b.x - s.a.x, s.b.y - s.a.y};
+                Param t = {Int128(S.x - s.a.x) * d.x + Int128(S.y - s.a.y) * d.y,
+                           Int128(d.x) * d.x + Int128(d.y) * d.y};
+                if (t.den == 0 || tCompare(t, en.tu) <= 0 || tCompare(t, en.tv) >= 0 ||
+                    chosen.size() >= maxGroups) {
+                    // Beside an end: that end's next candidate.
+                    const int g = entries[i].gu < 0 ? entries[i].gv : entries[i].gv < 0 ? entries[i].gu
+                                  : std::hypot(gx[size_t(entries[i].gu)] - double(S.x), gy[size_t(entries[i].gu)] - double(S.y)) <=
+                                        std::hypot(gx[size_t(entries[i].gv)] - double(S.x), gy[size_t(entries[i].gv)] - double(S.y))
+                                      ? entries[i].gu : entries[i].gv;
+                    if (++chosen[size_t(g)] == perGroup)
+                        return false;
+                    moved[size_t(g)] = 1;
+                    i = j;
+                    continue;
+                }
+                const int o = signOf(orient(s.a, s.b, S)), want = o != 0 ? o : tieSide(s.a, s.b);
+                splits.push_back({en.seg, t, int(chosen.size())});
+                addGroup(s, t, [&](const FixedPoint& q) {
+                    return int(signOf(orient(s.a, s.b, q)) != -want);
+                });
+                moved.push_back(1);
+                bent = true;
+            }
+            i = j;
+        }
+        if (bent)
+            sortSplits();
+        if (!changed) {
+            out.clear();
+            std::vector<Vtx> ring;
+            auto put = [&](const FixedPoint& p) {
+                if (ring.empty() || !same(ring.back().p, p))
+                    ring.push_back({p, -1});
+            };
+            for (int e = 0; e < n; e++) {
+                const Segment& s = segs[size_t(e)];
+                put(s.a);
+                for (int k = splitStart[size_t(e)]; k < splitStart[size_t(e) + 1]; k++)
+                    put(position(splits[size_t(k)].group));
+                if (e + 1 == n || segs[size_t(e) + 1].ring != s.ring) {
+                    while (ring.size() > 1 && same(ring.back().p, ring.front().p))
+                        ring.pop_back();
+                    if (ring.size() >= 3)
+                        out.push_back(std::move(ring));
+                    ring.clear();
+                }
+            }
+            return true;
+        }
+    }
+    return false;
+}
+
+/** The regions of the arrangement of `segs`, split at `hot` (the crossings, rounded): at the
+points on each edge when `exact` (every crossing on the grid), else snap-rounded. */
+void arrangeSegments(const std::vector<Segment>& segs, std::vector<FixedPoint> hot, bool exact,
                      const std::vector<FixedPoint>& inputPoints, bool evenOdd,
                      std::vector<Region>& regions, std::vector<FixedPoint>& added)
 {
-    std::vector<Segment> segs;
-    std::vector<int> ringSize;
-    for (size_t c = 0; c < rings.size(); c++) {
-        const int n = int(rings[c].size());
-        ringSize.push_back(n);
-        for (int i = 0; i < n; i++)
-            segs.push_back({rings[c][size_t(i)].p, rings[c][size_t((i + 1) % n)].p, int(c), i});
-    }
-    if (segs.empty())
-        return false;
-    int64_t xMin = segs[0].a.x, xMax = xMin, yMin = segs[0].a.y, yMax = yMin;
-    for (const Segment& s : segs) {
-        xMin = std::min(xMin, s.a.x), xMax = std::max(xMax, s.a.x);
-        yMin = std::min(yMin, s.a.y), yMax = std::max(yMax, s.a.y);
-    }
-    std::vector<FixedPoint> hot;
-    bool exact = true;
-    if (!findCrossings(segs, ringSize, UniformGrid(xMin, xMax, yMin, yMax, segs.size()), hot,
-                       exact))
-        return false;
-
     // Hot points: the vertices and the (rounded) crossings, sorted and unique.
     for (const Segment& s : segs)
         hot.push_back(s.a);
     std::sort(hot.begin(), hot.end(), lessXY);
     hot.erase(std::unique(hot.begin(), hot.end(), same), hot.end());
-    for (const FixedPoint& p : hot)  // rounded crossings may lie a unit outside the box
+    int64_t xMin = hot[0].x, xMax = xMin, yMin = hot[0].y, yMax = yMin;
+    for (const FixedPoint& p : hot)  // rounded crossings may lie a unit outside the edges' box
         xMin = std::min(xMin, p.x), xMax = std::max(xMax, p.x),
         yMin = std::min(yMin, p.y), yMax = std::max(yMax, p.y);
     const UniformGrid grid(xMin, xMax, yMin, yMax, hot.size());
@@ -520,7 +889,7 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
     buildArrangement(fragments, g);
     const int cycles = int(g.cycleArea.size()), halfEdges = int(g.from.size());
     if (halfEdges == 0)
-        return true;
+        return;
 
     // Winding numbers of the faces: 0 on the unbounded one, + passes across a half-edge from
     // its right to its left.
@@ -647,6 +1016,73 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
             for (Vtx& v : hole)
                 v.id = id[size_t(v.id)];
     }
+}
+
+std::atomic<uint64_t> fallbacks{0};
+
+//! The edges of `rings`, their proper crossings (rounded, and exact), whether any two meet.
+bool edgesAndCrossings(const std::vector<std::vector<Vtx>>& rings, std::vector<Segment>& segs,
+                       std::vector<FixedPoint>& hot, bool& exact, std::vector<Crossing>& records)
+{
+    std::vector<int> ringSize;
+    for (size_t c = 0; c < rings.size(); c++) {
+        const int n = int(rings[c].size());
+        ringSize.push_back(n);
+        for (int i = 0; i < n; i++)
+            segs.push_back({rings[c][size_t(i)].p, rings[c][size_t((i + 1) % n)].p, int(c), i});
+    }
+    exact = true;
+    if (segs.empty())
+        return false;
+    int64_t xMin = segs[0].a.x, xMax = xMin, yMin = segs[0].a.y, yMax = yMin;
+    for (const Segment& s : segs) {
+        xMin = std::min(xMin, s.a.x), xMax = std::max(xMax, s.a.x);
+        yMin = std::min(yMin, s.a.y), yMax = std::max(yMax, s.a.y);
+    }
+    return findCrossings(segs, ringSize, UniformGrid(xMin, xMax, yMin, yMax, segs.size()), hot,
+                         exact, records);
+}
+
+}  // namespace
+
+uint64_t snapRoundingFallbacks() { return fallbacks.load(); }
+
+bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
+                     const std::vector<FixedPoint>& inputPoints, bool evenOdd,
+                     std::vector<Region>& regions, std::vector<FixedPoint>& added)
+{
+    // Crossings off the grid: the edges through grid points near them, checked to keep every
+    // sample's winding number. The new pieces may cross other edges off the grid again, so
+    // again on the new rings (dense crossings, e.g. a 10,000-point self-crossing star, take
+    // about 15 passes, each with fewer crossings). Last resort: snap rounding of the input.
+    std::vector<std::vector<Vtx>> current, next;
+    const std::vector<std::vector<Vtx>>* base = &rings;
+    for (int pass = 0;; pass++) {
+        std::vector<Segment> segs;
+        std::vector<FixedPoint> hot;
+        std::vector<Crossing> crossings;
+        bool exact = true;
+        const bool meet = edgesAndCrossings(*base, segs, hot, exact, crossings);
+        if (pass == 0 && !meet)
+            return false;
+        if (segs.empty())
+            return true;  // every contour shrank to nothing, which the check allowed
+        if (exact) {
+            arrangeSegments(segs, std::move(hot), true, inputPoints, evenOdd, regions, added);
+            return true;
+        }
+        if (pass == 16 || !throughGridPoints(segs, crossings, next))
+            break;
+        current.swap(next);
+        base = &current;
+    }
+    fallbacks++;
+    std::vector<Segment> segs;
+    std::vector<FixedPoint> hot;
+    std::vector<Crossing> crossings;
+    bool exact = true;
+    edgesAndCrossings(rings, segs, hot, exact, crossings);
+    arrangeSegments(segs, std::move(hot), exact, inputPoints, evenOdd, regions, added);
     return true;
 }
 

@@ -82,6 +82,10 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
                      const std::vector<FixedPoint>& inputPoints, bool evenOdd,
                      std::vector<Region>& regions, std::vector<FixedPoint>& added);
 
+/** How many arrangements fell back to snap rounding since the library was loaded: exported for
+the tests, which check that it stays rare. */
+CV_EXPORTS uint64_t snapRoundingFallbacks();
+
 }  // namespace detail
 }  // namespace shading
 }  // namespace cv
