@@ -134,9 +134,13 @@ TEST(Texture, EqualsRemapWithTheSameCoordinates)
         for (int interpolation : {cv::INTER_NEAREST, cv::INTER_LINEAR})
             for (int border : {cv::BORDER_CONSTANT, cv::BORDER_REPLICATE, cv::BORDER_REFLECT,
                                cv::BORDER_WRAP, cv::BORDER_REFLECT_101})
-                for (int canvasType : {CV_8UC3, CV_32FC3}) {
+                for (int kind = 0; kind < 3; kind++) {
+                    // An 8-bit canvas; a float one with a float texture; a float one with the
+                    // 8-bit texture, read as bytes without a float copy (compareWithRemap
+                    // converts it first, as the documentation says).
+                    const int canvasType = kind == 0 ? CV_8UC3 : CV_32FC3;
                     const TexScene s = randomScene(rng, 12, size, texSize);
-                    const Mat& tex = canvasType == CV_8UC3 ? tex8 : tex32;
+                    const Mat& tex = kind == 1 ? tex32 : tex8;
                     const int differing =
                         compareWithRemap(s, tex, canvasType, interpolation, border, size);
                     EXPECT_LE(differing, 2) << "interp " << interpolation << " border " << border;

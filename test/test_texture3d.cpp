@@ -116,6 +116,36 @@ TEST(DrawTexturedMesh3d, FrontoParallelFaceEqualsTexturedTriangles)
     }
 }
 
+TEST(DrawTexturedMesh3d, EightBitTextureOnFloatCanvasEqualsItsFloatConversion)
+{
+    // Read as bytes through a table, an 8-bit texture gives exactly the image of its
+    // convertTo(CV_32F, 1 / 255) copy, for every shading, sampling and border.
+    RNG rng(12);
+    Mat tex8(29, 41, CV_8UC3), tex32;
+    rng.fill(tex8, RNG::UNIFORM, 0, 256);
+    tex8.convertTo(tex32, CV_32F, 1 / 255.0);
+    const Floor floor;
+    std::vector<Point2d> uv;
+    for (size_t i = 0; i < floor.verts.size(); i++)
+        uv.emplace_back(rng.uniform(-60.0, 100.0), rng.uniform(-60.0, 100.0));
+    for (int shade : {SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG})
+        for (int interpolation : {INTER_NEAREST, INTER_LINEAR})
+            for (int border :
+                 {BORDER_CONSTANT, BORDER_REPLICATE, BORDER_WRAP, BORDER_REFLECT_101}) {
+                RenderSettings s;
+                s.shadeType = shade;
+                s.textureInterpolation = interpolation;
+                s.textureBorder = border;
+                s.lights = {PointLight(Point3d(0, -1, 2), Vec3d(0.6, 0.5, 0.4))};
+                Mat a(200, 200, CV_32FC3, Scalar::all(0.5)), b = a.clone();
+                drawTexturedMesh3d(a, floor.verts, floor.faces, uv, tex8, kK, kZero, kZero, s);
+                drawTexturedMesh3d(b, floor.verts, floor.faces, uv, tex32, kK, kZero, kZero, s);
+                EXPECT_EQ(norm(a, b, NORM_INF), 0)
+                    << "shade " << shade << " interp " << interpolation << " border " << border;
+                EXPECT_GT(norm(a, Mat(200, 200, CV_32FC3, Scalar::all(0.5)), NORM_INF), 0);
+            }
+}
+
 TEST(DrawTexturedMesh3d, WhiteTextureLitEqualsWhiteVertexColours)
 {
     // I = c D + S with c = 1: textured and vertex-coloured lighting agree wherever nothing

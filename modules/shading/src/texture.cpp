@@ -13,6 +13,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -46,12 +47,24 @@ void checkSampling(int interpolation, const char* interpolationName, int borderM
                         borderName, borderMode));
 }
 
+const float* byteTexelUnits()
+{
+    // convertTo(CV_32F, 1.0 / 255) computes float(t) * float(1.0 / 255) in float.
+    static const std::array<float, 256> units = [] {
+        std::array<float, 256> u;
+        for (int t = 0; t < 256; t++)
+            u[size_t(t)] = float(t) * float(1.0 / 255.0);
+        return u;
+    }();
+    return units.data();
+}
+
 Mat textureInUnitsOf(const Mat& tex, int canvasDepth)
 {
-    if (tex.depth() == canvasDepth)
-        return tex;
-    Mat texels;  // [0, 1] float, 0..255 8-bit
-    tex.convertTo(texels, canvasDepth, canvasDepth == CV_8U ? 255.0 : 1.0 / 255.0);
+    if (tex.depth() == canvasDepth || canvasDepth == CV_32F)
+        return tex;  // a float canvas reads 8-bit texels through byteTexelUnits()
+    Mat texels;
+    tex.convertTo(texels, CV_8U, 255.0);
     return texels;
 }
 

@@ -28,9 +28,16 @@ inline int clipTo(int x, int a, int b)
     return x >= a ? (x < b ? x : b - 1) : a;
 }
 
+/** The float value of each 8-bit texel value on a float canvas, t * (1/255) in float: what
+`Mat::convertTo(dst, CV_32F, 1.0 / 255)` gives, so sampling bytes through it equals sampling
+the converted texture. */
+const float* byteTexelUnits();
+
 /** Samples a texture as cv::remap does with float maps. Coordinates are clamped to +-1e6 first:
 the same result for every |coordinate| below 2^31 (remap saturates indices to 16 bits anyway),
-and defined beyond. */
+and defined beyond. T is the canvas's type; the texture is of the same type, or, for a float
+canvas, 8-bit read through byteTexelUnits() (no float copy per call, a quarter of the memory to
+fetch). */
 template <typename T>
 struct RemapSampler {
     using Acc = typename std::conditional<std::is_same<T, uchar>::value, int, float>::type;
@@ -41,16 +48,31 @@ struct RemapSampler {
     int border;
     bool linear;
     double invCols, invRows;  //!< for BORDER_WRAP's remainders
+    const float* byteUnits;   //!< set for an 8-bit texture on a float canvas
 
     RemapSampler(const Mat& tex, int interpolation, int borderMode)
         : data(tex.data), step(tex.step[0]), cols(tex.cols), rows(tex.rows), border(borderMode),
-          linear(interpolation == INTER_LINEAR), invCols(1.0 / tex.cols), invRows(1.0 / tex.rows)
+          linear(interpolation == INTER_LINEAR), invCols(1.0 / tex.cols), invRows(1.0 / tex.rows),
+          byteUnits(std::is_same<T, float>::value && tex.depth() == CV_8U ? byteTexelUnits()
+                                                                          : nullptr)
     {
+        CV_Assert(tex.depth() == DataType<T>::depth || byteUnits != nullptr);
     }
 
-    const T* texel(int x, int y) const
+    template <typename S>
+    const S* texel(int x, int y) const
     {
-        return reinterpret_cast<const T*>(data + size_t(y) * step) + 3 * x;
+        return reinterpret_cast<const S*>(data + size_t(y) * step) + 3 * x;
+    }
+
+    //! Channel k of texel p in the canvas's units.
+    template <typename S>
+    T value(const S* p, int k) const
+    {
+        if constexpr (std::is_same<S, T>::value)
+            return p[k];
+        else
+            return byteUnits[p[k]];
     }
 
     static float clampCoordinate(float v)
@@ -61,21 +83,36 @@ struct RemapSampler {
     //! The sample at map coordinate (u, v); taps outside the texture take the slower border path.
     void sample(float u, float v, T* out) const
     {
-        if (linear)
-            sampleLinear(clampCoordinate(u), clampCoordinate(v), out);
-        else
-            sampleNearest(clampCoordinate(u), clampCoordinate(v), out);
+        if constexpr (std::is_same<T, float>::value) {
+            if (byteUnits != nullptr) {
+                sampleAs<uchar>(u, v, out);
+                return;
+            }
+        }
+        sampleAs<T>(u, v, out);
     }
 
+private:
+    template <typename S>
+    void sampleAs(float u, float v, T* out) const
+    {
+        if (linear)
+            sampleLinear<S>(clampCoordinate(u), clampCoordinate(v), out);
+        else
+            sampleNearest<S>(clampCoordinate(u), clampCoordinate(v), out);
+    }
+
+    template <typename S>
     void sampleNearest(float u, float v, T* out) const
     {
         const int sx = saturate_cast<short>(u), sy = saturate_cast<short>(v);  // cvRound, as remap
         if (unsigned(sx) >= unsigned(cols) || unsigned(sy) >= unsigned(rows))
-            return sampleNearestOutside(sx, sy, out);
-        const T* s = texel(sx, sy);
-        out[0] = s[0], out[1] = s[1], out[2] = s[2];
+            return sampleNearestOutside<S>(sx, sy, out);
+        const S* s = texel<S>(sx, sy);
+        out[0] = value(s, 0), out[1] = value(s, 1), out[2] = value(s, 2);
     }
 
+    template <typename S>
     void sampleLinear(float u, float v, T* out) const
     {
         const int sx = cvRound(u * float(kTabSize)), sy = cvRound(v * float(kTabSize));
@@ -84,18 +121,17 @@ struct RemapSampler {
         const int iy = saturate_cast<short>(sy >> kTabBits);
         if (unsigned(ix) < unsigned(std::max(cols - 1, 0)) &&
             unsigned(iy) < unsigned(std::max(rows - 1, 0))) {
-            const T* v0 = texel(ix, iy);
-            const T* v2 = texel(ix, iy + 1);
+            const S* v0 = texel<S>(ix, iy);
+            const S* v2 = texel<S>(ix, iy + 1);
             blend(v0, v0 + 3, v2, v2 + 3, fx, fy, out);
         } else {
-            sampleLinearOutside(ix, iy, fx, fy, out);
+            sampleLinearOutside<S>(ix, iy, fx, fy, out);
         }
     }
 
-private:
     //! remap's bilinear sum of four taps with weights at 1/32 steps, in its order and type.
-    static void blend(const T* v0, const T* v1, const T* v2, const T* v3, int fx,
-                                       int fy, T* out)
+    template <typename S>
+    void blend(const S* v0, const S* v1, const S* v2, const S* v3, int fx, int fy, T* out) const
     {
         // remap's BilinearTab: (1 - fy)(1 - fx), (1 - fy) fx, fy (1 - fx), fy fx at 1/32 steps,
         // exact in float; the 8-bit table is the same times 2^15, exact integers.
@@ -111,7 +147,8 @@ private:
             w[2] = Acc(float(fy * gx) * scale), w[3] = Acc(float(fy * fx) * scale);
         }
         for (int k = 0; k < 3; k++) {
-            const Acc t = Acc(v0[k] * w[0] + v1[k] * w[1] + v2[k] * w[2] + v3[k] * w[3]);
+            const Acc t = Acc(value(v0, k) * w[0] + value(v1, k) * w[1] + value(v2, k) * w[2] +
+                              value(v3, k) * w[3]);
             if constexpr (std::is_same<T, uchar>::value)
                 out[k] = saturate_cast<uchar>((t + (1 << (kCoefBits - 1))) >> kCoefBits);
             else
@@ -139,6 +176,7 @@ private:
     }
 
     //! Taps outside the texture: its border, as remap's.
+    template <typename S>
     void sampleNearestOutside(int sx, int sy, T* out) const
     {
         if (border == BORDER_CONSTANT) {
@@ -152,14 +190,15 @@ private:
             sx = borderIndex(sx, cols, invCols);
             sy = borderIndex(sy, rows, invRows);
         }
-        const T* s = texel(sx, sy);
-        out[0] = s[0], out[1] = s[1], out[2] = s[2];
+        const S* s = texel<S>(sx, sy);
+        out[0] = value(s, 0), out[1] = value(s, 1), out[2] = value(s, 2);
     }
 
+    template <typename S>
     void sampleLinearOutside(int ix, int iy, int fx, int fy, T* out) const
     {
-        static const T zero[3] = {T(0), T(0), T(0)};
-        const T *v0, *v1, *v2, *v3;
+        static const S zero[3] = {S(0), S(0), S(0)};
+        const S *v0, *v1, *v2, *v3;
         if (border == BORDER_CONSTANT &&
             (ix >= cols || ix + 1 < 0 || iy >= rows || iy + 1 < 0)) {
             out[0] = out[1] = out[2] = T(0);
@@ -167,18 +206,20 @@ private:
         } else if (border == BORDER_REPLICATE) {
             const int x0 = clipTo(ix, 0, cols), x1 = clipTo(ix + 1, 0, cols);
             const int y0 = clipTo(iy, 0, rows), y1 = clipTo(iy + 1, 0, rows);
-            v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
+            v0 = texel<S>(x0, y0), v1 = texel<S>(x1, y0);
+            v2 = texel<S>(x0, y1), v3 = texel<S>(x1, y1);
         } else if (border == BORDER_WRAP) {  // each tap wrapped: the next one wraps to 0
             const int x0 = wrapIndex(ix, cols, invCols), x1 = x0 + 1 == cols ? 0 : x0 + 1;
             const int y0 = wrapIndex(iy, rows, invRows), y1 = y0 + 1 == rows ? 0 : y0 + 1;
-            v0 = texel(x0, y0), v1 = texel(x1, y0), v2 = texel(x0, y1), v3 = texel(x1, y1);
+            v0 = texel<S>(x0, y0), v1 = texel<S>(x1, y0);
+            v2 = texel<S>(x0, y1), v3 = texel<S>(x1, y1);
         } else {
             const int x0 = borderIndex(ix, cols, invCols), x1 = borderIndex(ix + 1, cols, invCols);
             const int y0 = borderIndex(iy, rows, invRows), y1 = borderIndex(iy + 1, rows, invRows);
-            v0 = x0 >= 0 && y0 >= 0 ? texel(x0, y0) : zero;
-            v1 = x1 >= 0 && y0 >= 0 ? texel(x1, y0) : zero;
-            v2 = x0 >= 0 && y1 >= 0 ? texel(x0, y1) : zero;
-            v3 = x1 >= 0 && y1 >= 0 ? texel(x1, y1) : zero;
+            v0 = x0 >= 0 && y0 >= 0 ? texel<S>(x0, y0) : zero;
+            v1 = x1 >= 0 && y0 >= 0 ? texel<S>(x1, y0) : zero;
+            v2 = x0 >= 0 && y1 >= 0 ? texel<S>(x0, y1) : zero;
+            v3 = x1 >= 0 && y1 >= 0 ? texel<S>(x1, y1) : zero;
         }
         blend(v0, v1, v2, v3, fx, fy, out);
     }
@@ -197,7 +238,8 @@ void checkTexture(const Mat& texture, const char* argName);
 //! Checks remap's interpolation (INTER_NEAREST, INTER_LINEAR) and border mode arguments.
 void checkSampling(int interpolation, const char* interpolationName, int borderMode,
                    const char* borderName);
-//! The texture in the canvas's units: float in [0, 1] or 8-bit 0..255 (a view when it is already).
+/** The texture as a RemapSampler for a canvas of this depth reads it: a float texture for an
+8-bit canvas converted to 0..255, else the texture itself (no copy). */
 Mat textureInUnitsOf(const Mat& texture, int canvasDepth);
 
 }  // namespace detail

@@ -29,8 +29,9 @@ before sampling, which changes nothing remap defines (it saturates texel indices
 @param texCoords L texture coordinates (u, v) in texture pixels, as remap's maps hold them:
 (0, 0) is the centre of the texture's top-left pixel, (cols - 1, rows - 1) its bottom-right one.
 @param texture `CV_8UC3` or `CV_32FC3`, not empty. A texture of the other depth than the canvas
-is converted first: 8-bit to float scaled by 1/255, float to 8-bit scaled by 255 (rounded,
-saturated), so colours stay in the canvas's units.
+is sampled as if converted first: 8-bit to float scaled by 1/255 (as `convertTo` does it; read
+in place, no copy is made), float to 8-bit scaled by 255 (rounded, saturated; a copy), so
+colours stay in the canvas's units.
 @param interpolation `INTER_NEAREST` or `INTER_LINEAR`.
 @param borderMode `BORDER_CONSTANT` (black), `BORDER_REPLICATE`, `BORDER_REFLECT`,
 `BORDER_WRAP` or `BORDER_REFLECT_101`: where the coordinate leaves the texture.
