@@ -130,10 +130,11 @@ void bindPolygon(py::module_& m) {
         py::arg_v("fillRule", static_cast<int>(sh::FILL_EVEN_ODD), "FILL_EVEN_ODD"),
         py::arg("returnVertices") = false,
         "Triangles covering what fillPolygons covers with the same rule, each sample at most "
-        "once (exactly, unless contours cross off the 1/256 px grid: then samples within "
-        "1/512 px of an edge may differ).\n\n"
+        "once, exactly (crossings off the 1/256 px grid move to nearby grid points, checked "
+        "to change no sample; only edges thousands of pixels long fall back to snap rounding, "
+        "where samples within 1/512 px of an edge may differ).\n\n"
         "polygons: as for fillPolygons; contours may cross and touch.\n"
         "Returns faces, K x 3 int32 indices into the contours' points concatenated in order, "
         "then the added crossing points; with returnVertices=True, (faces, vertices), vertices "
-        "N x 2 float64 in pixels: the snapped points, then the crossings rounded to 1/256 px.");
+        "N x 2 float64 in pixels: the snapped points, then the crossings' grid points (1/256 px).");
 }

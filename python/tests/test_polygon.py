@@ -137,4 +137,4 @@ def test_triangulation_of_a_pentagram_by_rule():
         counts = coverage_counts(vertices, faces, 64, 64)
         assert counts.max() == 1 and counts[32, 32] == centre
         filled = mask(sh.fillPolygons(blank(64, 64), star, 1, rule))
-        assert ((counts == 1) != filled).sum() <= 2  # only samples within 1/512 px of an edge
+        np.testing.assert_array_equal(counts == 1, filled)  # crossings off the grid: exact too

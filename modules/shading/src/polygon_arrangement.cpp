@@ -4,12 +4,15 @@
 // faces of the resulting planar arrangement with their winding numbers, and the boundaries of
 // the regions the fill rule selects.
 //
-// Crossing points off the 1/256 px grid are rounded to it, and the edges snap-rounded (Hobby;
+// When every crossing lies on the 1/256 px grid, edges are split at the points on them: exact.
+// Otherwise each crossing moves to a grid point near it and every edge becomes the polyline
+// through its crossings' points (throughGridPoints), checked exactly to keep every sample's
+// winding number; the new rings go through the same steps again (their pieces may cross other
+// edges off the grid). Last resort (counted, snapRoundingFallbacks): snap rounding (Hobby;
 // Guibas and Marimont): the grid points whose half-open cell [x - 1/2, x + 1/2) x [y - 1/2,
-// y + 1/2) holds a vertex or a crossing are "hot", and every edge becomes the polyline through
-// the hot points whose cells it meets, in order. Such polylines never cross; each lies within
-// 1/2 grid unit (1/512 px, in x and in y) of its edge, so the winding number changes only there.
-// When every crossing lies on the grid, edges are split at the points on them only: exact.
+// y + 1/2) holds a vertex or a rounded crossing are "hot", and every edge becomes the polyline
+// through the hot points whose cells it meets. Such polylines never cross; each lies within
+// 1/2 unit (1/512 px, in x and in y) of its edge, so the winding number changes only there.
 #include "polygon_geometry.hpp"
 
 #include <opencv2/core.hpp>
