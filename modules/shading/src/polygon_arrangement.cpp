@@ -195,10 +195,12 @@ struct Crossing {
 /** Finds the proper crossings of the edges, testing the pairs that share a grid cell (a pair
 sharing several reports its crossing from the cell that holds it only). Returns whether any two
 edges meet other than consecutive ones at their shared point; `crossings` gets the rounded
-crossing points, `exact` whether all of them were on the grid and `records` the exact ones. */
+crossing points, `exact` whether all of them were on the grid and `records` the exact ones.
+With `fresh`, only pairs with at least one fresh edge are tested (the others are known not to
+cross). */
 bool findCrossings(const std::vector<Segment>& segs, const std::vector<int>& ringSize,
                    const UniformGrid& grid, std::vector<FixedPoint>& crossings, bool& exact,
-                   std::vector<Crossing>& records)
+                   std::vector<Crossing>& records, const std::vector<uchar>* fresh = nullptr)
 {
     const int n = int(segs.size());
     std::vector<int64_t> box(4 * size_t(n));  // x min, x max, y min, y max
@@ -211,7 +213,7 @@ bool findCrossings(const std::vector<Segment>& segs, const std::vector<int>& rin
     bool meet = false;
     exact = true;
     // cell < 0: every pair is tested once, no grid.
-    auto test = [&](int i, int j, int cell) {
+    auto test = [&](int i, int j, int cell, const UniformGrid& cellGrid) {
         const int64_t *bi = &box[4 * size_t(i)], *bj = &box[4 * size_t(j)];
         if (bi[0] > bj[1] || bj[0] > bi[1] || bi[2] > bj[3] || bj[2] > bi[3])
             return;
@@ -235,7 +237,7 @@ bool findCrossings(const std::vector<Segment>& segs, const std::vector<int>& rin
                 // Within a unit of the crossing: both edges are listed in its cell.
                 const FixedPoint near = {s.a.x + std::llround(double(r.x) * f),
                                          s.a.y + std::llround(double(r.y) * f)};
-                if (grid.cellOf(near) != cell)
+                if (cellGrid.cellOf(near) != cell)
                     return;
             }
             crossings.push_back({roundCrossing(s.a.x, r.x, num, den, exact),
@@ -249,21 +251,49 @@ bool findCrossings(const std::vector<Segment>& segs, const std::vector<int>& rin
             meet = true;  // they touch at a vertex, which is a hot point already
         }
     };
+    auto isFresh = [&](int i) { return fresh == nullptr || (*fresh)[size_t(i)] != 0; };
     if (n <= 48) {
         for (int i = 0; i < n; i++)
             for (int j = i + 1; j < n; j++)
-                test(i, j, -1);
+                if (isFresh(i) || isFresh(j))
+                    test(i, j, -1, grid);
         return meet;
     }
+    // A grid over the fresh edges only (later passes: a few among many): fresh pairs meet in
+    // its cells, and every other edge near the fresh ones looks up the cells it passes.
+    std::vector<int> freshList;
+    int64_t xMin = INT64_MAX, xMax = INT64_MIN, yMin = INT64_MAX, yMax = INT64_MIN;
+    for (int i = 0; i < n; i++)
+        if (isFresh(i)) {
+            const int64_t* b = &box[4 * size_t(i)];
+            freshList.push_back(i);
+            xMin = std::min(xMin, b[0]), xMax = std::max(xMax, b[1]);
+            yMin = std::min(yMin, b[2]), yMax = std::max(yMax, b[3]);
+        }
+    if (freshList.empty())
+        return meet;
+    const UniformGrid freshGrid = fresh == nullptr
+                                      ? grid
+                                      : UniformGrid(xMin, xMax, yMin, yMax, freshList.size());
     CellLists cells;
-    cells.build(grid.count(), [&](auto&& fn) {
-        for (int i = 0; i < n; i++)
-            grid.cellsNear(segs[size_t(i)].a, segs[size_t(i)].b, 0, [&](int cell) { fn(cell, i); });
+    cells.build(freshGrid.count(), [&](auto&& fn) {
+        for (int i : freshList)
+            freshGrid.cellsNear(segs[size_t(i)].a, segs[size_t(i)].b, 0,
+                                [&](int cell) { fn(cell, i); });
     });
-    for (int c = 0; c < grid.count(); c++)
+    for (int c = 0; c < freshGrid.count(); c++)
         for (int i = cells.start[size_t(c)]; i < cells.start[size_t(c) + 1]; i++)
             for (int j = i + 1; j < cells.start[size_t(c) + 1]; j++)
-                test(cells.items[size_t(i)], cells.items[size_t(j)], c);
+                test(cells.items[size_t(i)], cells.items[size_t(j)], c, freshGrid);
+    for (int j = 0; j < n && fresh != nullptr; j++) {
+        const int64_t* b = &box[4 * size_t(j)];
+        if (isFresh(j) || b[0] > xMax || b[1] < xMin || b[2] > yMax || b[3] < yMin)
+            continue;
+        freshGrid.cellsNear(segs[size_t(j)].a, segs[size_t(j)].b, 0, [&](int c) {
+            for (int i = cells.start[size_t(c)]; i < cells.start[size_t(c) + 1]; i++)
+                test(cells.items[size_t(i)], j, c, freshGrid);
+        });
+    }
     return meet;
 }
 
@@ -674,7 +704,9 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                 continue;
             const double c0 = std::ceil((xl - 2) / double(kSubpixelOne));
             const double c1 = std::floor((xr + 2) / double(kSubpixelOne));
-            visited += std::max(0.0, c1 - c0 + 1);
+            if (c0 > c1)
+                continue;  // most rows: no sample within the loop's few units
+            visited += c1 - c0 + 1;
             if (visited > kBudget)
                 return false;
             const int64_t sy = r * kSubpixelOne;
@@ -802,16 +834,21 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
             sortSplits();
         if (!changed) {
             out.clear();
+            // Ids: 1 where the edge leaving the point is new, 0 where it is an input edge kept
+            // as it was (edgesAndCrossings then skips pairs of those).
             std::vector<Vtx> ring;
-            auto put = [&](const FixedPoint& p) {
+            auto put = [&](const FixedPoint& p, int isNew) {
                 if (ring.empty() || !same(ring.back().p, p))
-                    ring.push_back({p, -1});
+                    ring.push_back({p, isNew});
+                else
+                    ring.back().id = isNew;  // the edge from here is the later one
             };
             for (int e = 0; e < n; e++) {
                 const Segment& s = segs[size_t(e)];
-                put(s.a);
+                const bool split = splitStart[size_t(e)] < splitStart[size_t(e) + 1];
+                put(s.a, split ? 1 : 0);
                 for (int k = splitStart[size_t(e)]; k < splitStart[size_t(e) + 1]; k++)
-                    put(position(splits[size_t(k)].group));
+                    put(position(splits[size_t(k)].group), 1);
                 if (e + 1 == n || segs[size_t(e) + 1].ring != s.ring) {
                     while (ring.size() > 1 && same(ring.back().p, ring.front().p))
                         ring.pop_back();
@@ -1023,16 +1060,22 @@ void arrangeSegments(const std::vector<Segment>& segs, std::vector<FixedPoint> h
 
 std::atomic<uint64_t> fallbacks{0};
 
-//! The edges of `rings`, their proper crossings (rounded, and exact), whether any two meet.
+/** The edges of `rings`, their proper crossings (rounded, and exact), whether any two meet.
+With `freshIds`, a vertex's id says whether the edge leaving it is new (throughGridPoints' rings):
+edges that are not met no crossing the last time, so pairs of them are not tested again. */
 bool edgesAndCrossings(const std::vector<std::vector<Vtx>>& rings, std::vector<Segment>& segs,
-                       std::vector<FixedPoint>& hot, bool& exact, std::vector<Crossing>& records)
+                       std::vector<FixedPoint>& hot, bool& exact, std::vector<Crossing>& records,
+                       bool freshIds = false)
 {
     std::vector<int> ringSize;
+    std::vector<uchar> fresh;
     for (size_t c = 0; c < rings.size(); c++) {
         const int n = int(rings[c].size());
         ringSize.push_back(n);
-        for (int i = 0; i < n; i++)
+        for (int i = 0; i < n; i++) {
             segs.push_back({rings[c][size_t(i)].p, rings[c][size_t((i + 1) % n)].p, int(c), i});
+            fresh.push_back(rings[c][size_t(i)].id != 0);
+        }
     }
     exact = true;
     if (segs.empty())
@@ -1043,7 +1086,7 @@ bool edgesAndCrossings(const std::vector<std::vector<Vtx>>& rings, std::vector<S
         yMin = std::min(yMin, s.a.y), yMax = std::max(yMax, s.a.y);
     }
     return findCrossings(segs, ringSize, UniformGrid(xMin, xMax, yMin, yMax, segs.size()), hot,
-                         exact, records);
+                         exact, records, freshIds ? &fresh : nullptr);
 }
 
 }  // namespace
@@ -1065,7 +1108,7 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
         std::vector<FixedPoint> hot;
         std::vector<Crossing> crossings;
         bool exact = true;
-        const bool meet = edgesAndCrossings(*base, segs, hot, exact, crossings);
+        const bool meet = edgesAndCrossings(*base, segs, hot, exact, crossings, pass > 0);
         if (pass == 0 && !meet)
             return false;
         if (segs.empty())
