@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -597,7 +598,9 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
     }
     // The check visits about (|dx| + |dy|) / 256 samples per edge with crossings: too many
     // (edges thousands of pixels long) and snap rounding is the answer.
-    const double kBudget = double(1 << 23);
+    // The budget grows with the edges (stars of 10,000 to 100,000 points need about 77 per
+    // edge): long edges, not many, are what it stops.
+    const double kBudget = std::max(double(1 << 23), 256.0 * n);
     double estimate = 0;
     for (int e = 0; e < n; e++)
         if (splitStart[size_t(e)] < splitStart[size_t(e) + 1])
@@ -614,8 +617,11 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
     std::vector<int> chosen;
     std::vector<double> gx, gy;
     std::vector<std::pair<std::pair<int, double>, int>> keyed;
-    // `wrongSide(q)` counts what speaks against candidate q.
-    auto addGroup = [&](const Segment& s, const Param& t, auto&& wrongSide) {
+    // `wrongSide(q)` counts what speaks against candidate q. Among equals, an end of an edge
+    // through the crossing comes first: nearly concurrent edges then meet at a point they
+    // already have instead of making a new crossing near it, pass after pass.
+    auto addGroup = [&](const Segment& s, const Param& t, auto&& wrongSide,
+                        const std::vector<int>& through) {
         const Rational X = {s.a.x, s.b.x - s.a.x, t.num, t.den};
         const Rational Y = {s.a.y, s.b.y - s.a.y, t.num, t.den};
         gx.push_back(X.approx()), gy.push_back(Y.approx()), chosen.push_back(0);
@@ -624,7 +630,10 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         for (int k = 0; k < perGroup; k++) {
             const FixedPoint q = {fx + k % side, fy + k / side};
             const double dx = double(q.x) - gx.back(), dy = double(q.y) - gy.back();
-            keyed.push_back({{wrongSide(q), dx * dx + dy * dy}, k});
+            bool atEnd = false;
+            for (int e : through)
+                atEnd |= same(q, segs[size_t(e)].a) || same(q, segs[size_t(e)].b);
+            keyed.push_back({{wrongSide(q), atEnd ? -1.0 : dx * dx + dy * dy}, k});
         }
         std::sort(keyed.begin(), keyed.end());
         for (const auto& k : keyed)
@@ -650,7 +659,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                     wrong += signOf(orient(segs[size_t(e)].a, segs[size_t(e)].b, q)) ==
                              tieSide(segs[size_t(e)].a, segs[size_t(e)].b);
                 return wrong;
-            });
+            }, lines[g]);
     }
     auto position = [&](int g) {
         return candidates[size_t(g) * perGroup + size_t(chosen[size_t(g)])];
@@ -731,11 +740,16 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
 
     const Param zero = {0, 1}, one = {1, 1};
     const size_t maxGroups = chosen.size() + 64 + chosen.size() / 4;  // bends: a few
-    for (int round = 0; round < 16; round++) {
-        entries.clear();
+    // After the first round only the edges with a moved point are checked again: the other
+    // edges' entries stand, so dense crossings that settle over many rounds stay cheap.
+    std::vector<uchar> dirty(size_t(n), 1);
+    for (int round = 0; round < 64; round++) {
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [&](const Entry& en) { return dirty[size_t(en.seg)] != 0; }),
+                      entries.end());
         visited = 0;
         for (int e = 0; e < n; e++) {
-            if (splitStart[size_t(e)] == splitStart[size_t(e) + 1])
+            if (!dirty[size_t(e)] || splitStart[size_t(e)] == splitStart[size_t(e) + 1])
                 continue;
             const Segment& s = segs[size_t(e)];
             Param tu = zero;
@@ -753,8 +767,9 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                 tu = tv, u2 = v2, gu = gv;
             }
         }
+        std::fill(dirty.begin(), dirty.end(), 0);
         std::sort(entries.begin(), entries.end(), [](const Entry& l, const Entry& r) {
-            return l.sy < r.sy || (l.sy == r.sy && l.sx < r.sx);
+            return std::tie(l.sy, l.sx, l.seg, l.gu, l.gv) < std::tie(r.sy, r.sx, r.seg, r.gu, r.gv);
         });
         std::vector<uchar> moved(chosen.size(), 0);
         bool changed = false, bent = false;
@@ -824,7 +839,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                 splits.push_back({en.seg, t, int(chosen.size())});
                 addGroup(s, t, [&](const FixedPoint& q) {
                     return int(signOf(orient(s.a, s.b, q)) != -want);
-                });
+                }, std::vector<int>());
                 moved.push_back(1);
                 bent = true;
             }
@@ -832,6 +847,9 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         }
         if (bent)
             sortSplits();
+        for (const Split& i : splits)
+            if (moved[size_t(i.group)])
+                dirty[size_t(i.seg)] = 1;
         if (!changed) {
             out.clear();
             // Ids: 1 where the edge leaving the point is new, 0 where it is an input edge kept
@@ -1100,7 +1118,12 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
     // Crossings off the grid: the edges through grid points near them, checked to keep every
     // sample's winding number. The new pieces may cross other edges off the grid again, so
     // again on the new rings (dense crossings, e.g. a 10,000-point self-crossing star, take
-    // about 15 passes, each with fewer crossings). Last resort: snap rounding of the input.
+    // about 15 passes, each with fewer crossings). Last resort: snap rounding of the rings as
+    // far as they got (each pass kept every sample's winding number), so that only samples
+    // within 1/512 px of an edge near the crossings still off the grid can change.
+    // Placing crossings can keep making a new one among nearly concurrent edges; passes after
+    // the first few test only the new pieces, so many are cheap.
+    constexpr int kMaxPasses = 64;
     std::vector<std::vector<Vtx>> current, next;
     const std::vector<std::vector<Vtx>>* base = &rings;
     for (int pass = 0;; pass++) {
@@ -1117,7 +1140,7 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
             arrangeSegments(segs, std::move(hot), true, inputPoints, evenOdd, regions, added);
             return true;
         }
-        if (pass == 16 || !throughGridPoints(segs, crossings, next))
+        if (pass == kMaxPasses || !throughGridPoints(segs, crossings, next))
             break;
         current.swap(next);
         base = &current;
@@ -1127,7 +1150,7 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
     std::vector<FixedPoint> hot;
     std::vector<Crossing> crossings;
     bool exact = true;
-    edgesAndCrossings(rings, segs, hot, exact, crossings);
+    edgesAndCrossings(*base, segs, hot, exact, crossings);
     arrangeSegments(segs, std::move(hot), exact, inputPoints, evenOdd, regions, added);
     return true;
 }
