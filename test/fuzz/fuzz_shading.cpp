@@ -23,6 +23,14 @@
 #include <cstdlib>
 #include <vector>
 
+namespace cv {
+namespace shading {
+namespace detail {
+CV_EXPORTS uint64_t snapRoundingFallbacks();  // triangulatePolygons' fallbacks (polygon.cpp)
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv
+
 namespace {
 
 constexpr int kGuard = 3;              // guard pixels around the ROI
@@ -244,6 +252,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         case 7: cv::shading::fillPolygons(canvas, contours, polygonColor, shadeType); break;
         case 8: {
             cv::Mat vertices;
+            const uint64_t fallbacksBefore = cv::shading::detail::snapRoundingFallbacks();
             cv::shading::triangulatePolygons(contours, triangles, shadeType, vertices);
             // Indices into the vertices: the contours' points, concatenated, then crossings.
             if (vertices.rows < int(verts.size()) || vertices.cols != 2)
@@ -267,6 +276,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             cv::minMaxLoc(count.reshape(1), nullptr, &most);
             if (most > 1)
                 fail("triangulatePolygons covered a sample twice");
+            // Unless it fell back to snap rounding (counted), exactly fillPolygons' samples.
+            if (cv::shading::detail::snapRoundingFallbacks() == fallbacksBefore) {
+                cv::Mat filled(count.size(), CV_8UC3, cv::Scalar::all(0));
+                cv::shading::fillPolygons(filled, contours, cv::Scalar::all(255), shadeType);
+                cv::Mat a, b;
+                cv::extractChannel(count, a, 0);
+                cv::extractChannel(filled, b, 0);
+                if (cv::countNonZero((a > 0) != (b > 0)) != 0)
+                    fail("triangulatePolygons' coverage differs from fillPolygons'");
+            }
             break;
         }
         case 6:

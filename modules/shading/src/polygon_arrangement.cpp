@@ -617,6 +617,10 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
     std::vector<int> chosen;
     std::vector<double> gx, gy;
     std::vector<std::pair<std::pair<int, double>, int>> keyed;
+    std::vector<FixedPoint> vertexPoints;
+    for (const Segment& sg : segs)
+        vertexPoints.push_back(sg.a);
+    std::sort(vertexPoints.begin(), vertexPoints.end(), lessXY);
     // `wrongSide(q)` counts what speaks against candidate q. Among equals, an end of an edge
     // through the crossing comes first: nearly concurrent edges then meet at a point they
     // already have instead of making a new crossing near it, pass after pass.
@@ -633,7 +637,9 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
             bool atEnd = false;
             for (int e : through)
                 atEnd |= same(q, segs[size_t(e)].a) || same(q, segs[size_t(e)].b);
-            keyed.push_back({{wrongSide(q), atEnd ? -1.0 : dx * dx + dy * dy}, k});
+            const bool atVertex =
+                atEnd || std::binary_search(vertexPoints.begin(), vertexPoints.end(), q, lessXY);
+            keyed.push_back({{wrongSide(q), atVertex ? -1.0 : dx * dx + dy * dy}, k});
         }
         std::sort(keyed.begin(), keyed.end());
         for (const auto& k : keyed)
@@ -822,8 +828,15 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                 const FixedPoint d = {s.b.x - s.a.x, s.b.y - s.a.y};
                 Param t = {Int128(S.x - s.a.x) * d.x + Int128(S.y - s.a.y) * d.y,
                            Int128(d.x) * d.x + Int128(d.y) * d.y};
-                if (t.den == 0 || tCompare(t, en.tu) <= 0 || tCompare(t, en.tv) >= 0 ||
-                    chosen.size() >= maxGroups) {
+                // The projection may fall past the piece's end, on the edge's next piece (a
+                // sample beside a crossing, in a thin wedge no nearby grid point keeps it in):
+                // bending there works as well, so only a projection at a split point or off
+                // the edge counts as beside an end.
+                bool inside = t.den != 0 && tCompare(t, zero) > 0 && tCompare(t, one) < 0;
+                for (int k = splitStart[size_t(en.seg)]; inside && k < splitStart[size_t(en.seg) + 1];
+                     k++)
+                    inside = tCompare(t, splits[size_t(k)].t) != 0;
+                if (!inside || chosen.size() >= maxGroups) {
                     // Beside an end: that end's next candidate.
                     const int g = entries[i].gu < 0 ? entries[i].gv : entries[i].gv < 0 ? entries[i].gu
                                   : std::hypot(gx[size_t(entries[i].gu)] - double(S.x), gy[size_t(entries[i].gu)] - double(S.y)) <=
