@@ -551,7 +551,7 @@ sample within a hair of the edge, another one on its other side further on), the
 at a grid point beside the sample. False when no choice passes within a few rounds, or the
 check would visit too many samples. */
 bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Crossing>& crossings,
-                       std::vector<std::vector<Vtx>>& out)
+                       std::vector<std::vector<Vtx>>& out, double budget, double& visited)
 {
     const int n = int(segs.size());
     //! A split point of an edge: its parameter and its group (the grid point it moves to).
@@ -598,9 +598,6 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
     }
     // The check visits about (|dx| + |dy|) / 256 samples per edge with crossings: too many
     // (edges thousands of pixels long) and snap rounding is the answer.
-    // The budget grows with the edges (stars of 10,000 to 100,000 points need about 77 per
-    // edge): long edges, not many, are what it stops.
-    const double kBudget = std::max(double(1 << 23), 256.0 * n);
     double estimate = 0;
     for (int e = 0; e < n; e++)
         if (splitStart[size_t(e)] < splitStart[size_t(e) + 1])
@@ -608,7 +605,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                          std::fabs(double(segs[size_t(e)].b.y - segs[size_t(e)].a.y))) /
                             double(kSubpixelOne) +
                         2 * (splitStart[size_t(e) + 1] - splitStart[size_t(e)] + 1);
-    if (estimate > kBudget / 2)
+    if (visited + estimate > budget)
         return false;
 
     // Candidates per group: the 8 x 8 grid points around its exact point.
@@ -677,7 +674,6 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         Param tu, tv;
     };
     std::vector<Entry> entries;
-    double visited = 0;
     // The samples around one moved piece: per sample row, the x range of the loop's parts
     // within a unit of the row, widened by 2 units (the doubles are off by far less).
     auto checkPiece = [&](int e, const Param& tu, const Param& tv, const FixedPoint& u2,
@@ -694,7 +690,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         const double r0 = std::ceil(ylo / double(kSubpixelOne));
         const double r1 = std::floor(yhi / double(kSubpixelOne));
         visited += std::max(0.0, r1 - r0 + 1);
-        if (visited > kBudget)
+        if (visited > budget)
             return false;
         const int lineSide = tieSide(s.a, s.b);
         // The loop's parts: old piece, new piece, and the two moves (in the boxes of their ends).
@@ -722,7 +718,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
             if (c0 > c1)
                 continue;  // most rows: no sample within the loop's few units
             visited += c1 - c0 + 1;
-            if (visited > kBudget)
+            if (visited > budget)
                 return false;
             const int64_t sy = r * kSubpixelOne;
             const bool uBelow = compareTo(uy, sy) <= 0, vBelow = compareTo(vy, sy) <= 0;
@@ -753,7 +749,6 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         entries.erase(std::remove_if(entries.begin(), entries.end(),
                                      [&](const Entry& en) { return dirty[size_t(en.seg)] != 0; }),
                       entries.end());
-        visited = 0;
         for (int e = 0; e < n; e++) {
             if (!dirty[size_t(e)] || splitStart[size_t(e)] == splitStart[size_t(e) + 1])
                 continue;
@@ -1137,6 +1132,14 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
     // Placing crossings can keep making a new one among nearly concurrent edges; passes after
     // the first few test only the new pieces, so many are cheap.
     constexpr int kMaxPasses = 64;
+    // The check's rows and samples, over all rounds and passes, are bounded by a budget that
+    // grows with the edges (stars of 10,000 to 100,000 points need about 77 per edge, in their
+    // first round): long edges, not many, are what it stops.
+    size_t edgeCount = 0;
+    for (const std::vector<Vtx>& ring : rings)
+        edgeCount += ring.size();
+    const double budget = std::max(double(1 << 20), 256.0 * double(edgeCount));
+    double visited = 0;
     std::vector<std::vector<Vtx>> current, next;
     const std::vector<std::vector<Vtx>>* base = &rings;
     for (int pass = 0;; pass++) {
@@ -1153,7 +1156,7 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
             arrangeSegments(segs, std::move(hot), true, inputPoints, evenOdd, regions, added);
             return true;
         }
-        if (pass == kMaxPasses || !throughGridPoints(segs, crossings, next))
+        if (pass == kMaxPasses || !throughGridPoints(segs, crossings, next, budget, visited))
             break;
         current.swap(next);
         base = &current;
