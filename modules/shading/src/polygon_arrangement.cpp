@@ -695,8 +695,29 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         const int lineSide = tieSide(s.a, s.b);
         // The loop's parts: old piece, new piece, and the two moves (in the boxes of their ends).
         static const int parts[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
+        // Rows clear of both ends' moves cross only the two lines, whose x over [Y - 1, Y + 1]
+        // is x(Y) -+ |slope|: a cheap test rules out most of them (no sample within reach).
+        const double lowEnd = py[0] < py[1] ? std::max(py[0], py[2]) : std::max(py[1], py[3]);
+        const double highEnd = py[0] < py[1] ? std::min(py[1], py[3]) : std::min(py[0], py[2]);
+        const bool lines = py[0] != py[1] && py[2] != py[3];
+        const double slope[2] = {lines ? (px[1] - px[0]) / (py[1] - py[0]) : 0,
+                                 lines ? (px[3] - px[2]) / (py[3] - py[2]) : 0};
         for (int64_t r = int64_t(r0); r <= int64_t(r1); r++) {
             const double Y = double(r) * double(kSubpixelOne);
+            if (lines && Y - 1 > lowEnd && Y + 1 < highEnd) {
+                const double xo = px[0] + (Y - py[0]) * slope[0];
+                const double xn = px[2] + (Y - py[2]) * slope[1];
+                const double lo = std::min(xo - std::fabs(slope[0]), xn - std::fabs(slope[1]));
+                const double hi = std::max(xo + std::fabs(slope[0]), xn + std::fabs(slope[1]));
+                // A unit more of margin than below absorbs this form's own rounding; floors by
+                // an offset truncation (no libm call), never below the true floor.
+                auto floorAbove = [](double v) {
+                    return int64_t(v + 0x1p41) - (int64_t(1) << 41);  // v within +-2^50 here
+                };
+                if (floorAbove((hi + 3) / double(kSubpixelOne)) <
+                    -floorAbove(-(lo - 3) / double(kSubpixelOne)))
+                    continue;
+            }
             double xl = HUGE_VAL, xr = -HUGE_VAL;
             for (int k = 0; k < 4; k++) {
                 const int i = parts[k][0], j = parts[k][1];
