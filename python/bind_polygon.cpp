@@ -131,8 +131,9 @@ void bindPolygon(py::module_& m) {
         py::arg("returnVertices") = false,
         "Triangles covering what fillPolygons covers with the same rule, each sample at most "
         "once, exactly (crossings off the 1/256 px grid move to nearby grid points, checked "
-        "to change no sample; only edges thousands of pixels long fall back to snap rounding, "
-        "where samples within 1/512 px of an edge may differ).\n\n"
+        "to change no sample; edges thousands of pixels long, and rarely dense crossings no "
+        "grid point suits, fall back to snap rounding, where samples within 1/512 px of an "
+        "edge may differ).\n\n"
         "polygons: as for fillPolygons; contours may cross and touch.\n"
         "Returns faces, K x 3 int32 indices into the contours' points concatenated in order, "
         "then the added crossing points; with returnVertices=True, (faces, vertices), vertices "

@@ -166,8 +166,9 @@ def triangulatePolygons(polygons: Contours, fillRule: int = ..., returnVertices:
     indices into the contours' points concatenated in order, then the points added where
     contours cross; with returnVertices=True, (faces, vertices), vertices N x 2 float64 pixels
     (the snapped points, then grid points (1/256 px) near the crossings). Exact: crossings off
-    the grid move to grid points checked to change no sample; only edges thousands of pixels
-    long fall back to snap rounding (samples within 1/512 px of an edge may differ)."""
+    the grid move to grid points checked to change no sample; edges thousands of pixels long,
+    and rarely dense crossings no grid point suits, fall back to snap rounding (samples within
+    1/512 px of an edge may differ)."""
 
 
 LINE_BRESENHAM: int
