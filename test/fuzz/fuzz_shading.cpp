@@ -26,7 +26,7 @@
 namespace cv {
 namespace shading {
 namespace detail {
-CV_EXPORTS uint64_t snapRoundingFallbacks();  // triangulatePolygons' fallbacks (polygon.cpp)
+CV_EXPORTS uint64_t snapRoundingFallbacks();  // triangulatePolygons' fallbacks (polygon_arrangement.cpp)
 }  // namespace detail
 }  // namespace shading
 }  // namespace cv

@@ -618,11 +618,10 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
     for (const Segment& sg : segs)
         vertexPoints.push_back(sg.a);
     std::sort(vertexPoints.begin(), vertexPoints.end(), lessXY);
-    // `wrongSide(q)` counts what speaks against candidate q. Among equals, an end of an edge
-    // through the crossing comes first: nearly concurrent edges then meet at a point they
-    // already have instead of making a new crossing near it, pass after pass.
-    auto addGroup = [&](const Segment& s, const Param& t, auto&& wrongSide,
-                        const std::vector<int>& through) {
+    // `wrongSide(q)` counts what speaks against candidate q. Among equals, an existing vertex
+    // (every edge's end is the next one's start) comes first: nearly concurrent edges then meet
+    // at a point they already have instead of making a new crossing near it, pass after pass.
+    auto addGroup = [&](const Segment& s, const Param& t, auto&& wrongSide) {
         const Rational X = {s.a.x, s.b.x - s.a.x, t.num, t.den};
         const Rational Y = {s.a.y, s.b.y - s.a.y, t.num, t.den};
         gx.push_back(X.approx()), gy.push_back(Y.approx()), chosen.push_back(0);
@@ -631,11 +630,8 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         for (int k = 0; k < perGroup; k++) {
             const FixedPoint q = {fx + k % side, fy + k / side};
             const double dx = double(q.x) - gx.back(), dy = double(q.y) - gy.back();
-            bool atEnd = false;
-            for (int e : through)
-                atEnd |= same(q, segs[size_t(e)].a) || same(q, segs[size_t(e)].b);
             const bool atVertex =
-                atEnd || std::binary_search(vertexPoints.begin(), vertexPoints.end(), q, lessXY);
+                std::binary_search(vertexPoints.begin(), vertexPoints.end(), q, lessXY);
             keyed.push_back({{wrongSide(q), atVertex ? -1.0 : dx * dx + dy * dy}, k});
         }
         std::sort(keyed.begin(), keyed.end());
@@ -662,7 +658,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                     wrong += signOf(orient(segs[size_t(e)].a, segs[size_t(e)].b, q)) ==
                              tieSide(segs[size_t(e)].a, segs[size_t(e)].b);
                 return wrong;
-            }, lines[g]);
+            });
     }
     auto position = [&](int g) {
         return candidates[size_t(g) * perGroup + size_t(chosen[size_t(g)])];
@@ -702,6 +698,10 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
         const bool lines = py[0] != py[1] && py[2] != py[3];
         const double slope[2] = {lines ? (px[1] - px[0]) / (py[1] - py[0]) : 0,
                                  lines ? (px[3] - px[2]) / (py[3] - py[2]) : 0};
+        // A floor by an offset truncation (no libm call), never below the true floor.
+        auto floorAbove = [](double v) {
+            return int64_t(v + 0x1p41) - (int64_t(1) << 41);  // v within +-2^50 here
+        };
         for (int64_t r = int64_t(r0); r <= int64_t(r1); r++) {
             const double Y = double(r) * double(kSubpixelOne);
             if (lines && Y - 1 > lowEnd && Y + 1 < highEnd) {
@@ -709,11 +709,7 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                 const double xn = px[2] + (Y - py[2]) * slope[1];
                 const double lo = std::min(xo - std::fabs(slope[0]), xn - std::fabs(slope[1]));
                 const double hi = std::max(xo + std::fabs(slope[0]), xn + std::fabs(slope[1]));
-                // A unit more of margin than below absorbs this form's own rounding; floors by
-                // an offset truncation (no libm call), never below the true floor.
-                auto floorAbove = [](double v) {
-                    return int64_t(v + 0x1p41) - (int64_t(1) << 41);  // v within +-2^50 here
-                };
+                // A unit more of margin than below absorbs this form's own rounding.
                 if (floorAbove((hi + 3) / double(kSubpixelOne)) <
                     -floorAbove(-(lo - 3) / double(kSubpixelOne)))
                     continue;
@@ -762,6 +758,11 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
     };
 
     const Param zero = {0, 1}, one = {1, 1};
+    //! How far group g's exact point lies from sample s; an unmoved end (-1) is never nearer.
+    auto distance = [&](int g, const FixedPoint& s) {
+        return g < 0 ? HUGE_VAL
+                     : std::hypot(gx[size_t(g)] - double(s.x), gy[size_t(g)] - double(s.y));
+    };
     const size_t maxGroups = chosen.size() + 64 + chosen.size() / 4;  // bends: a few
     // After the first round only the edges with a moved point are checked again: the other
     // edges' entries stand, so dense crossings that settle over many rounds stay cheap.
@@ -810,12 +811,9 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
             for (size_t k = i; k < j && !fixed; k++) {
                 const Entry& en = entries[k];
                 const Segment& s = segs[size_t(en.seg)];
-                const int o = signOf(orient(s.a, s.b, S)), want = o != 0 ? o : tieSide(s.a, s.b);
+                const int want = sideOfSample(s.a, s.b, S);
                 int ends[2] = {en.gu, en.gv};
-                auto dist = [&](int g) {
-                    return g < 0 ? HUGE_VAL : std::hypot(gx[size_t(g)] - double(S.x), gy[size_t(g)] - double(S.y));
-                };
-                if (dist(ends[1]) < dist(ends[0]))
+                if (distance(ends[1], S) < distance(ends[0], S))
                     std::swap(ends[0], ends[1]);
                 for (int g : ends) {
                     if (g < 0)
@@ -853,22 +851,19 @@ bool throughGridPoints(const std::vector<Segment>& segs, const std::vector<Cross
                      k++)
                     inside = tCompare(t, splits[size_t(k)].t) != 0;
                 if (!inside || chosen.size() >= maxGroups) {
-                    // Beside an end: that end's next candidate.
-                    const int g = entries[i].gu < 0 ? entries[i].gv : entries[i].gv < 0 ? entries[i].gu
-                                  : std::hypot(gx[size_t(entries[i].gu)] - double(S.x), gy[size_t(entries[i].gu)] - double(S.y)) <=
-                                        std::hypot(gx[size_t(entries[i].gv)] - double(S.x), gy[size_t(entries[i].gv)] - double(S.y))
-                                      ? entries[i].gu : entries[i].gv;
+                    // Beside an end: the nearer moved end's next candidate.
+                    const int g = distance(en.gu, S) <= distance(en.gv, S) ? en.gu : en.gv;
                     if (++chosen[size_t(g)] == perGroup)
                         return false;
                     moved[size_t(g)] = 1;
                     i = j;
                     continue;
                 }
-                const int o = signOf(orient(s.a, s.b, S)), want = o != 0 ? o : tieSide(s.a, s.b);
+                const int want = sideOfSample(s.a, s.b, S);
                 splits.push_back({en.seg, t, int(chosen.size())});
                 addGroup(s, t, [&](const FixedPoint& q) {
                     return int(signOf(orient(s.a, s.b, q)) != -want);
-                }, std::vector<int>());
+                });
                 moved.push_back(1);
                 bent = true;
             }
@@ -1109,7 +1104,7 @@ std::atomic<uint64_t> fallbacks{0};
 
 /** The edges of `rings`, their proper crossings (rounded, and exact), whether any two meet.
 With `freshIds`, a vertex's id says whether the edge leaving it is new (throughGridPoints' rings):
-edges that are not met no crossing the last time, so pairs of them are not tested again. */
+edges that are not new met no crossing the last time, so pairs of them are not tested again. */
 bool edgesAndCrossings(const std::vector<std::vector<Vtx>>& rings, std::vector<Segment>& segs,
                        std::vector<FixedPoint>& hot, bool& exact, std::vector<Crossing>& records,
                        bool freshIds = false)
@@ -1146,12 +1141,10 @@ bool arrangeContours(const std::vector<std::vector<Vtx>>& rings,
 {
     // Crossings off the grid: the edges through grid points near them, checked to keep every
     // sample's winding number. The new pieces may cross other edges off the grid again, so
-    // again on the new rings (dense crossings, e.g. a 10,000-point self-crossing star, take
-    // about 15 passes, each with fewer crossings). Last resort: snap rounding of the rings as
-    // far as they got (each pass kept every sample's winding number), so that only samples
-    // within 1/512 px of an edge near the crossings still off the grid can change.
-    // Placing crossings can keep making a new one among nearly concurrent edges; passes after
-    // the first few test only the new pieces, so many are cheap.
+    // again on the new rings, each pass with fewer crossings (dense ones take dozens; passes
+    // after the first test only the new pieces, so they are cheap). Last resort: snap rounding
+    // of the rings as far as they got (each pass kept every sample's winding number), so that
+    // only samples within 1/512 px of an edge near the crossings still off the grid can change.
     constexpr int kMaxPasses = 64;
     // The check's rows and samples, over all rounds and passes, are bounded by a budget that
     // grows with the edges (stars of 10,000 to 100,000 points need about 77 per edge, in their
