@@ -319,43 +319,55 @@ inline int paintRowsFor(const Mat& canvas)
 }
 
 /** A band's z-buffer bookkeeping: per sample the face keeping it (-1: the depth buffer's own
-value), and per 64-sample block of a row whether every sample was written by this draw and an
-upper bound of the depths written there. A face whose box lies in full blocks bounded by less
-than its nearest depth is hidden: nothing of it can pass the depth test. */
+value) and whether this draw wrote it (a bit), and per block of 8 samples of a row an upper bound
+of the depths written there. A face whose box holds only written samples, in blocks bounded by
+less than its nearest depth, is hidden: nothing of it can pass the depth test. Blocks of 8 match
+small faces: a closed surface's back faces hide behind front faces a few pixels wide. */
 class ZBufferBlocks {
 public:
     void reset(int rows, int width)
     {
         width_ = width;
         wordsPerRow_ = (width + 63) / 64;
+        blocksPerRow_ = wordsPerRow_ << (6 - kDepthBoundShift);
         kept_.assign(size_t(rows) * width, -1);
         covered_.assign(size_t(rows) * wordsPerRow_, 0);
-        bound_.assign(size_t(rows) * wordsPerRow_, 0.f);
-        if (width & 63)  // samples past the row's end count as written
-            for (int r = 0; r < rows; r++)
-                covered_[size_t(r) * wordsPerRow_ + wordsPerRow_ - 1] = ~uint64_t(0) << (width & 63);
+        bound_.assign(size_t(rows) * blocksPerRow_, 0.f);
     }
 
     int* keptRow(int r) { return kept_.data() + size_t(r) * width_; }
     uint64_t* coveredRow(int r) { return covered_.data() + size_t(r) * wordsPerRow_; }
-    float* boundRow(int r) { return bound_.data() + size_t(r) * wordsPerRow_; }
+    float* boundRow(int r) { return bound_.data() + size_t(r) * blocksPerRow_; }
 
     //! Whether rows [r0, r1), columns [c0, c1] are written and all nearer than `nearest`.
     bool hidden(int r0, int r1, int c0, int c1, float nearest) const
     {
         const int w0 = c0 >> 6, w1 = c1 >> 6;
+        const int b0 = c0 >> kDepthBoundShift, b1 = c1 >> kDepthBoundShift;
+        const uint64_t firstMask = ~uint64_t(0) << (c0 & 63);
+        const uint64_t lastMask = ~uint64_t(0) >> (63 - (c1 & 63));
         for (int r = r0; r < r1; r++) {
             const uint64_t* covered = covered_.data() + size_t(r) * wordsPerRow_;
-            const float* bound = bound_.data() + size_t(r) * wordsPerRow_;
-            for (int w = w0; w <= w1; w++)
-                if (covered[w] != ~uint64_t(0) || !(bound[w] < nearest))
+            const float* bound = bound_.data() + size_t(r) * blocksPerRow_;
+            for (int b = b0; b <= b1; b++)
+                if (!(bound[b] < nearest))
                     return false;
+            if (w0 == w1) {
+                if ((covered[w0] & firstMask & lastMask) != (firstMask & lastMask))
+                    return false;
+            } else {
+                if ((covered[w0] & firstMask) != firstMask || (covered[w1] & lastMask) != lastMask)
+                    return false;
+                for (int w = w0 + 1; w < w1; w++)
+                    if (covered[w] != ~uint64_t(0))
+                        return false;
+            }
         }
         return true;
     }
 
 private:
-    int width_ = 0, wordsPerRow_ = 0;
+    int width_ = 0, wordsPerRow_ = 0, blocksPerRow_ = 0;
     std::vector<int> kept_;
     std::vector<uint64_t> covered_;
     std::vector<float> bound_;

@@ -486,7 +486,7 @@ struct SurfaceShader {
             depthRow[x] = depth;
             kept[x] = face;
             covered[x >> 6] |= uint64_t(1) << (x & 63);
-            bound[x >> 6] = std::max(bound[x >> 6], depth);
+            bound[x >> kDepthBoundShift] = std::max(bound[x >> kDepthBoundShift], depth);
             if (keptWeights) {
                 keptWeights[2 * x] = float(q[slotOf1] * inv);
                 keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
