@@ -749,7 +749,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             shaders.shadeKeptRow(
                                 reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep), y,
                                 zbuffer.keptRow(y - y0),
-                                keptWeights.data() + size_t(y - y0) * width * 2, width);
+                                keptWeights.data() + size_t(y - y0) * width * 2,
+                                zbuffer.coveredRow(y - y0), width);
                     continue;
                 }
             }

@@ -135,7 +135,7 @@ struct ScreenMesh {
 
 template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
-                      const int* kept, const float* weights, int width);
+                      const int* kept, const float* weights, const uint64_t* written, int width);
 
 /** The span shaders of the 3D path, built per face from the ScreenMesh. */
 template <typename T, Surface kSurface>
@@ -148,11 +148,13 @@ struct SurfaceShaders {
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
 
-    //! Deferred Phong (BandOptions::deferred): lights a row's kept samples.
-    void shadeKeptRow(T* row, int y, const int* kept, const float* weights, int width) const
+    //! Deferred Phong (BandOptions::deferred): lights a row's kept (written) samples.
+    void shadeKeptRow(T* row, int y, const int* kept, const float* weights,
+                      const uint64_t* written, int width) const
     {
         if constexpr (litPerSample(kSurface))
-            shadeKeptSamples<T, kSurface>(*screen, *targets, row, y, kept, weights, width);
+            shadeKeptSamples<T, kSurface>(*screen, *targets, row, y, kept, weights, written,
+                                          width);
     }
 
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
@@ -181,38 +183,39 @@ struct SurfaceShaders {
     }
 };
 
-/** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred): the kept
-face's vertex attributes weighted by the kept weights, lit four samples at a time. */
+/** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred), those whose
+bit is set in `written`: the kept face's vertex attributes weighted by the kept weights, lit a
+batch at a time. */
 template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
-                  const int* kept, const float* weights, int width)
+                      const int* kept, const float* weights, const uint64_t* written, int width)
 {
     int* const idRow =
         targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
     constexpr int n = attributeCount(kSurface);
     int lastFace = -1;
     float a[3][n] = {};  // the kept face's vertex attributes
-    LitQuad<T> quad;
-    for (int x = 0; x < width; x++) {
-        const int face = kept[x];
-        if (face < 0)
-            continue;
-        if (idRow)
-            idRow[x] = screen.source[face];
-        if (face != lastFace) {
-            const Vec3i& f = screen.mesh.faces[face];
-            for (int i = 0; i < 3; i++)
-                for (int k = 0; k < n; k++)
-                    a[i][k] = float(screen.attributes[size_t(f[i]) * n + k]);
-            lastFace = face;
+    LitBatch<T> pending;
+    for (int word = 0; word < (width + 63) / 64; word++)
+        for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
+            const int x = word * 64 + __builtin_ctzll(bits);
+            const int face = kept[x];
+            if (idRow)
+                idRow[x] = screen.source[face];
+            if (face != lastFace) {
+                const Vec3i& f = screen.mesh.faces[face];
+                for (int i = 0; i < 3; i++)
+                    for (int k = 0; k < n; k++)
+                        a[i][k] = float(screen.attributes[size_t(f[i]) * n + k]);
+                lastFace = face;
+            }
+            const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
+            float v[n];
+            for (int k = 0; k < n; k++)
+                v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
+            shadeAttributes<T, kSurface>(row + 3 * x, v, targets, pending);
         }
-        const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
-        float v[n];
-        for (int k = 0; k < n; k++)
-            v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
-        shadeAttributes<T, kSurface>(row + 3 * x, v, targets, quad);
-    }
-    quad.flush(*targets.lighting);
+    pending.flush(*targets.lighting);
 }
 
 //! The inputs of drawMesh3d, checked and converted.
@@ -585,6 +588,7 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     lighting.kd = settings.kd, lighting.ks = settings.ks, lighting.shininess = settings.shininess;
     for (const PointLight& l : settings.lights)
         lighting.lights.push_back({Vec3d(l.position), l.intensity});
+    lighting.prepare();
     if (!normals.empty() || needNormals)
         for (Vec3d& n : in.normals)
             n = unitOrZero(n);  // used as unit normals (one-sided, as given)

@@ -6,6 +6,7 @@
 #define OPENCV_SHADING_SHADERS3D_HPP
 
 #include "shaders.hpp"
+#include "lighting_kernel.hpp"
 #include "texture_sampler.hpp"
 
 #include <opencv2/core.hpp>
@@ -47,126 +48,65 @@ struct Lighting {
         return result;
     }
 
-#if OPENCV_SHADING_SIMD128
-    /** terms() for four points in float lanes: v holds position and normal (not normalized). */
-    void termsQuad(const v_float32x4 v[6], v_float32x4 diffuse[3], v_float32x4 specular[3]) const
+    /** Call once the fields above are set: the float form the batch kernels read. */
+    void prepare()
     {
-        const v_float32x4 zero = v_setzero_f32(), one = v_setall_f32(1.f);
-        auto inverseLength = [&](const v_float32x4& x, const v_float32x4& y,
-                                 const v_float32x4& z) {
-            const v_float32x4 length2 = x * x + y * y + z * z;
-            return v_select(length2 > zero, one / v_sqrt(length2), zero);  // zero stays zero
-        };
-        const v_float32x4 px = v[0], py = v[1], pz = v[2];
-        const v_float32x4 invN = inverseLength(v[3], v[4], v[5]);
-        const v_float32x4 nx = v[3] * invN, ny = v[4] * invN, nz = v[5] * invN;
-        v_float32x4 vx = v_setall_f32(float(eye[0])) - px, vy = v_setall_f32(float(eye[1])) - py,
-                    vz = v_setall_f32(float(eye[2])) - pz;
-        const v_float32x4 invV = inverseLength(vx, vy, vz);
-        vx = vx * invV, vy = vy * invV, vz = vz * invV;
+        lightData.clear();
+        for (const Light& light : lights)
+            for (int k = 0; k < 3; k++)
+                lightData.push_back(float(light.position[k]));
+        const size_t intensities = lightData.size();
+        for (const Light& light : lights)
+            for (int k = 0; k < 3; k++)
+                lightData.push_back(float(light.intensity[k]));
+        kernel.lightPositions = lightData.data();
+        kernel.lightIntensities = lightData.data() + intensities;
+        kernel.lightCount = int(lights.size());
         for (int k = 0; k < 3; k++) {
-            diffuse[k] = v_setall_f32(float(ambient[k]));
-            specular[k] = zero;
+            kernel.eye[k] = float(eye[k]);
+            kernel.ambient[k] = float(ambient[k]);
         }
-        const bool wholePower = shininess == std::floor(shininess) && shininess <= 256;
-        for (const Light& light : lights) {
-            v_float32x4 lx = v_setall_f32(float(light.position[0])) - px;
-            v_float32x4 ly = v_setall_f32(float(light.position[1])) - py;
-            v_float32x4 lz = v_setall_f32(float(light.position[2])) - pz;
-            const v_float32x4 invL = inverseLength(lx, ly, lz);
-            lx = lx * invL, ly = ly * invL, lz = lz * invL;
-            const v_float32x4 nl = nx * lx + ny * ly + nz * lz;
-            const v_float32x4 facing = nl > zero;
-            if (!v_check_any(facing))
-                continue;
-            const v_float32x4 diffuseTerm = v_select(facing, nl * v_setall_f32(float(kd)), zero);
-            const v_float32x4 twoNl = nl + nl;
-            const v_float32x4 rv = (twoNl * nx - lx) * vx + (twoNl * ny - ly) * vy +
-                                   (twoNl * nz - lz) * vz;
-            const v_float32x4 shiny = facing & (rv > zero);
-            v_float32x4 highlight = zero;
-            if (v_check_any(shiny)) {
-                v_float32x4 base = v_select(shiny, rv, zero);
-                if (wholePower) {
-                    v_float32x4 result = one;
-                    for (unsigned e = unsigned(shininess); e; e >>= 1, base = base * base)
-                        if (e & 1)
-                            result = result * base;
-                    highlight = result;
-                } else {
-                    float b[4];
-                    v_store(b, base);
-                    for (float& x : b)
-                        x = x > 0 ? float(std::pow(double(x), shininess)) : 0.f;
-                    highlight = v_load(b);
-                }
-                highlight = v_select(shiny, highlight * v_setall_f32(float(ks)), zero);
-            }
-            for (int k = 0; k < 3; k++) {
-                const v_float32x4 intensity = v_setall_f32(float(light.intensity[k]));
-                diffuse[k] = diffuse[k] + intensity * diffuseTerm;
-                specular[k] = specular[k] + intensity * highlight;
-            }
-        }
+        kernel.kd = float(kd), kernel.ks = float(ks), kernel.shininess = shininess;
+        kernel.wholeShininess =
+            shininess == std::floor(shininess) && shininess <= 256 ? int(shininess) : -1;
+        kernel.toColor = float(1.0 / unit), kernel.toUnit = float(unit);
     }
-
-    /** shade() for four samples in float lanes: v holds position, normal (not normalized) and
-    colour; out[channel][lane] the lit colours in the canvas's units. */
-    void shadeQuad(const v_float32x4 v[9], float out[3][4]) const
-    {
-        v_float32x4 diffuse[3], specular[3];
-        termsQuad(v, diffuse, specular);
-        const v_float32x4 zero = v_setzero_f32(), one = v_setall_f32(1.f);
-        const v_float32x4 toColor = v_setall_f32(float(1.0 / unit)),
-                          toUnit = v_setall_f32(float(unit));
-        for (int k = 0; k < 3; k++) {
-            const v_float32x4 lit = v[6 + k] * toColor * diffuse[k] + specular[k];
-            v_store(out[k], v_min(v_max(lit, zero), one) * toUnit);
-        }
-    }
-#endif
 
     /** Lights `count` points: in[9 i ..] holds position, normal (unit or zero) and colour,
-    out[3 i ..] receives the lit colour, both colours in the canvas's units. Four at a time in
-    float lanes where SIMD is built (for per-face and per-vertex lighting of big meshes). */
+    out[3 i ..] receives the lit colour, both colours in the canvas's units. In float lanes a
+    batch at a time where SIMD is built (for per-face and per-vertex lighting of big meshes). */
     void shadeMany(const float* in, float* out, int count) const
     {
-        forPoints<9, 3>(in, out, count,
 #if OPENCV_SHADING_SIMD128
-                        [&](const v_float32x4 v[9], float lit[][4]) { shadeQuad(v, lit); },
+        forBatches<9, 3>(in, out, count, shadeBatch);
+#else
+        for (int i = 0; i < count; i++) {
+            const float* p = in + 9 * i;
+            const Vec3d c = shade(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]),
+                                  Vec3d(p[6], p[7], p[8]));
+            for (int k = 0; k < 3; k++)
+                out[3 * i + k] = float(c[k]);
+        }
 #endif
-                        [&](const float* p, float* o) {
-                            const Vec3d c = shade(Vec3d(p[0], p[1], p[2]),
-                                                  Vec3d(p[3], p[4], p[5]),
-                                                  Vec3d(p[6], p[7], p[8]));
-                            for (int k = 0; k < 3; k++)
-                                o[k] = float(c[k]);
-                        });
     }
 
     /** terms() of `count` points: in[6 i ..] holds position and normal (unit or zero), out[6 i
     ..] receives D then S. */
     void termsMany(const float* in, float* out, int count) const
     {
-        forPoints<6, 6>(in, out, count,
 #if OPENCV_SHADING_SIMD128
-                        [&](const v_float32x4 v[6], float ds[][4]) {
-                            v_float32x4 d[3], s[3];
-                            termsQuad(v, d, s);
-                            for (int k = 0; k < 3; k++) {
-                                v_store(ds[k], d[k]);
-                                v_store(ds[3 + k], s[k]);
-                            }
-                        },
+        forBatches<6, 6>(in, out, count, termsBatch);
+#else
+        for (int i = 0; i < count; i++) {
+            const float* p = in + 6 * i;
+            Vec3d d, s;
+            terms(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]), d, s);
+            for (int k = 0; k < 3; k++) {
+                out[6 * i + k] = float(d[k]);
+                out[6 * i + 3 + k] = float(s[k]);
+            }
+        }
 #endif
-                        [&](const float* p, float* o) {
-                            Vec3d d, s;
-                            terms(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]), d, s);
-                            for (int k = 0; k < 3; k++) {
-                                o[k] = float(d[k]);
-                                o[3 + k] = float(s[k]);
-                            }
-                        });
     }
 
     /** The model split as I = c D + S (before clamping) at world point p with normal n (unit,
@@ -212,34 +152,28 @@ struct Lighting {
         return std::min(std::max(c * (1.0 / unit) * diffuse + specular, 0.0), 1.0) * unit;
     }
 
+    LightingKernel kernel;  //!< set by prepare()
+
 private:
-    /** Runs quad() on four points at a time (lanes transposed) where SIMD is built, one() on
-    the rest: kIn floats in and kOut out per point. */
-    template <int kIn, int kOut, class... Fns>
-    static void forPoints(const float* in, float* out, int count, Fns&&... fns)
+    std::vector<float> lightData;  //!< kernel's light positions, then intensities
+
+    /** Runs `batch` (shadeBatch or termsBatch) on points given kIn floats each, `count` of
+    them, writing kOut floats each: transposed to the kernel's rows and back, a batch at a time. */
+    template <int kIn, int kOut, typename Batch>
+    void forBatches(const float* in, float* out, int count, Batch&& batch) const
     {
-        auto fnList = std::forward_as_tuple(fns...);
-        int i = 0;
-#if OPENCV_SHADING_SIMD128
-        auto& quad = std::get<0>(fnList);
-        for (; i + 4 <= count; i += 4) {
-            float lanes[kIn][4];
-            for (int j = 0; j < 4; j++)
+        float rows[kIn][kLightBatch], lit[kOut][kLightBatch];
+        for (int first = 0; first < count; first += kLightBatch) {
+            const int n = std::min(kLightBatch, count - first);
+            const int padded = (n + 7) & ~7;  // whole vectors: the last point repeated
+            for (int j = 0; j < padded; j++)
                 for (int k = 0; k < kIn; k++)
-                    lanes[k][j] = in[kIn * (i + j) + k];
-            v_float32x4 v[kIn];
-            for (int k = 0; k < kIn; k++)
-                v[k] = v_load(lanes[k]);
-            float result[kOut][4];
-            quad(v, result);
-            for (int j = 0; j < 4; j++)
+                    rows[k][j] = in[kIn * (first + std::min(j, n - 1)) + k];
+            batch(kernel, rows, lit, n);
+            for (int j = 0; j < n; j++)
                 for (int k = 0; k < kOut; k++)
-                    out[kOut * (i + j) + k] = result[k][j];
+                    out[kOut * (first + j) + k] = lit[k][j];
         }
-#endif
-        auto& one = std::get<sizeof...(Fns) - 1>(fnList);
-        for (; i < count; i++)
-            one(in + kIn * i, out + kOut * i);
     }
 };
 
@@ -251,20 +185,20 @@ inline Vec3d unitOrZero(const Vec3d& v)
 }
 
 /** Samples waiting to be lit together (Phong): their pixels and interpolated position, normal
-and colour. Four at a time in float lanes where SIMD is built, else one by one in double. */
+and colour, lit a batch at a time in float lanes where SIMD is built, else one by one in double. */
 template <typename T>
-struct LitQuad {
-    T* pixels[4];
-    float values[9][4];
+struct LitBatch {
+    T* pixels[kLightBatch];
+    float values[9][kLightBatch];
     int count = 0;
 
-    //! Queues a pixel; v: position, normal (not normalized), colour. Lights when four wait.
+    //! Queues a pixel; v: position, normal (not normalized), colour. Lights when the batch is full.
     void add(T* pixel, const float v[9], const Lighting& lighting)
     {
         for (int k = 0; k < 9; k++)
             values[k][count] = v[k];
         pixels[count++] = pixel;
-        if (count == 4)
+        if (count == kLightBatch)
             flush(lighting);
     }
 
@@ -273,14 +207,11 @@ struct LitQuad {
         if (count == 0)
             return;
 #if OPENCV_SHADING_SIMD128
-        for (int i = count; i < 4; i++)
+        for (int i = count; i < ((count + 7) & ~7); i++)  // whole vectors
             for (int k = 0; k < 9; k++)
                 values[k][i] = values[k][0];
-        v_float32x4 v[9];
-        for (int k = 0; k < 9; k++)
-            v[k] = v_load(values[k]);
-        float lit[3][4];
-        lighting.shadeQuad(v, lit);
+        float lit[3][kLightBatch];
+        shadeBatch(lighting.kernel, values, lit, count);
         for (int i = 0; i < count; i++)
             for (int k = 0; k < 3; k++)
                 pixels[i][k] = toChannel<T>(lit[k][i]);
@@ -339,24 +270,24 @@ constexpr int attributeCount(Surface s)
          : 8;
 }
 
-//! Surfaces lit per sample: their samples go through LitQuad, and through deferred shading.
+//! Surfaces lit per sample: their samples go through LitBatch, and through deferred shading.
 constexpr bool litPerSample(Surface s)
 {
     return s == Surface::kPhong || s == Surface::kTexturedSampleLit;
 }
 
 /** Colours a sample from its interpolated attributes `a` (attributeCount(kSurface) values), or
-queues it in `quad` to be lit (litPerSample). Not for kFlat or kTexturedFaceLit, whose colour
+queues it in `pending` to be lit (litPerSample). Not for kFlat or kTexturedFaceLit, whose colour
 or lighting belongs to the face. */
 template <typename T, Surface kSurface>
 inline void shadeAttributes(T* pixel, const float* a, const DepthTargets& targets,
-                            LitQuad<T>& quad)
+                            LitBatch<T>& pending)
 {
     if constexpr (kSurface == Surface::kGouraud) {
         for (int k = 0; k < 3; k++)
             pixel[k] = toChannel<T>(a[k]);
     } else if constexpr (kSurface == Surface::kPhong) {
-        quad.add(pixel, a, *targets.lighting);
+        pending.add(pixel, a, *targets.lighting);
     } else if constexpr (kSurface == Surface::kTextured) {
         targets.sampler<T>().sample(a[0], a[1], pixel);
     } else if constexpr (kSurface == Surface::kTexturedVertexLit) {
@@ -369,7 +300,7 @@ inline void shadeAttributes(T* pixel, const float* a, const DepthTargets& target
         targets.sampler<T>().sample(a[0], a[1], texel);
         const float v[9] = {a[2], a[3], a[4], a[5], a[6], a[7],
                             float(texel[0]), float(texel[1]), float(texel[2])};
-        quad.add(pixel, v, *targets.lighting);
+        pending.add(pixel, v, *targets.lighting);
     }
 }
 
@@ -414,8 +345,8 @@ struct SurfaceShader {
             q[i] *= invZ[i];
     }
 
-    //! The sample's colour from its q (unnormalized, `inv` = 1 / sum), or queued in `quad`.
-    void shadeSample(T* pixel, const double q[3], double inv, LitQuad<T>& quad) const
+    //! The sample's colour from its q (unnormalized, `inv` = 1 / sum), or queued in `pending`.
+    void shadeSample(T* pixel, const double q[3], double inv, LitBatch<T>& pending) const
     {
         if constexpr (kSurface == Surface::kFlat) {
             pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
@@ -431,7 +362,7 @@ struct SurfaceShader {
                     pixel[k] = toChannel<T>(float(
                         targets->lighting->combine(texel[k], faceLight[k], faceLight[3 + k])));
             } else {
-                shadeAttributes<T, kSurface>(pixel, a, *targets, quad);
+                shadeAttributes<T, kSurface>(pixel, a, *targets, pending);
             }
         }
     }
@@ -447,7 +378,7 @@ struct SurfaceShader {
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
-        LitQuad<T> quad;
+        LitBatch<T> pending;
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double inv = 1.0 / (q[0] + q[1] + q[2]);
@@ -455,10 +386,10 @@ struct SurfaceShader {
                 depthRow[x] = float(inv);
             if (idRow)
                 idRow[x] = faceId;
-            shadeSample(row + 3 * x, q, inv, quad);
+            shadeSample(row + 3 * x, q, inv, pending);
         }
         if constexpr (litPerSample(kSurface))
-            quad.flush(*out.lighting);
+            pending.flush(*out.lighting);
     }
 
     /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
@@ -475,7 +406,7 @@ struct SurfaceShader {
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
-        LitQuad<T> quad;  // unused: surfaces lit per sample are deferred
+        LitBatch<T> pending;  // unused: surfaces lit per sample are deferred
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double inv = 1.0 / (q[0] + q[1] + q[2]);
@@ -495,7 +426,7 @@ struct SurfaceShader {
             if (idRow)
                 idRow[x] = faceId;
             if constexpr (!litPerSample(kSurface))
-                shadeSample(row + 3 * x, q, inv, quad);
+                shadeSample(row + 3 * x, q, inv, pending);
         }
     }
 };
