@@ -191,6 +191,9 @@ public:
 
     void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
 
+    //! Row r's bits, 64 pixels a word.
+    const uint64_t* row(int r) const { return bits_.data() + size_t(r) * wordsPerRow_; }
+
     /** Bit r - rowBegin is set when pixels [colFirst, colLast] of row r are all final, for r in
     [rowBegin, rowEnd) (at most 64 rows): a face whose box lies within such rows adds nothing
     there. An occlusion test per face, far cheaper than walking it. With kUntilOpenRow, stops at
@@ -466,9 +469,9 @@ struct BandOptions {
     sample keeping its face (ZBufferBlocks), and a face whose sample box is covered by nearer
     samples already is skipped before setup. */
     bool depthTested = false;
-    /** With depthTested: the kept face's weights are stored with each sample and each kept
-    sample is shaded once at the end (the shaders' shadeKeptRow()), which pays for costly
-    shaders (Phong lighting). */
+    /** With depthTested or frontToBack: each sample's face and weights are kept, and the kept
+    samples are shaded at the end of the band, a batch at a time (the shaders' keep() and
+    shadeKeptRow()), which pays for costly shaders (Phong lighting). */
     bool deferred = false;
     //! Painter's order: always front to back (each pixel shaded once), for costly shaders.
     bool frontToBack = false;
@@ -643,6 +646,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         std::vector<std::pair<double, uint64_t>> refineRun;
         ZBufferBlocks zbuffer;           // depth-tested drawing: see BandOptions
         std::vector<float> keptWeights;  // deferred: per band sample, its kept face's weights
+        std::vector<int> keptFaces;      // deferred painter's: per band sample, its face
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -797,6 +801,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             // Front to back with a coverage mask: each pixel is written once, by its first
             // (frontmost) face, and faces behind finished rows are skipped unread.
             coverage.clear();
+            if constexpr (Shaders::kZBuffer)
+                if (options.deferred) {
+                    keptFaces.resize(size_t(bandRows) * width);
+                    keptWeights.resize(size_t(bandRows) * width * 2);
+                }
             uchar* bandData = canvasData + size_t(y0) * canvasStep;  // row y0
             size_t bandStep = canvasStep;
             if (streamBands) {
@@ -860,6 +869,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             return;
                         T* row = reinterpret_cast<T*>(bandData + size_t(r) * bandStep);
                         rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {
+                            if constexpr (Shaders::kZBuffer) {
+                                if (options.deferred) {  // shaded below, a batch at a time
+                                    bf.shader.keep(bf.triangle, y, a, b, bf.face,
+                                                   keptFaces.data() + size_t(r) * width,
+                                                   keptWeights.data() + size_t(r) * width * 2);
+                                    return;
+                                }
+                            }
                             bf.shader(bf.triangle, row, y, xBegin, a, b);
                         });
                         if (rowLeft[r] == 0)
@@ -867,6 +884,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     });
                 }
             }
+            if constexpr (Shaders::kZBuffer)
+                if (options.deferred)
+                    for (int y = y0; y < y1; y++)
+                        shaders.shadeKeptRow(
+                            reinterpret_cast<T*>(bandData + size_t(y - y0) * bandStep), y,
+                            keptFaces.data() + size_t(y - y0) * width,
+                            keptWeights.data() + size_t(y - y0) * width * 2,
+                            coverage.row(y - y0), width);
             if (background) {
                 for (int y = y0; y < y1; y++) {
                     T* row = reinterpret_cast<T*>(bandData + size_t(y - y0) * bandStep);

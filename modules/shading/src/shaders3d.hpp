@@ -392,6 +392,28 @@ struct SurfaceShader {
             pending.flush(*out.lighting);
     }
 
+    /** Deferred painter's order (BandOptions::deferred without depthTested): the span's samples
+    are this face's; each gets its depth, and in `kept` the face and in `keptWeights` the
+    perspective-correct weights of the face's own vertices 1 and 2, for shading later. */
+    void keep(const TriangleSetup& t, int y, int xBegin, int xEnd, int face, int* kept,
+              float* keptWeights) const
+    {
+        const DepthTargets& out = *targets;
+        float* const depthRow =
+            out.depth ? reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep) : nullptr;
+        double q[3];
+        startSpan(t, xBegin, y, q);
+        for (int x = xBegin; x < xEnd;
+             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
+            const double inv = 1.0 / (q[0] + q[1] + q[2]);
+            if (depthRow)
+                depthRow[x] = float(inv);
+            kept[x] = face;
+            keptWeights[2 * x] = float(q[slotOf1] * inv);
+            keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
+        }
+    }
+
     /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
     smaller than what the sample keeps (kept face -1: the buffer's own value, depth only), so the
     faces may come in any order. A taken sample gets its depth, its face in `kept`, the block
