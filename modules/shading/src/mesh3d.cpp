@@ -193,9 +193,16 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
     int* const idRow =
         targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
     constexpr int n = attributeCount(kSurface);
+    constexpr int kPadded = (n + 3) & ~3;
     int lastFace = -1;
-    float a[3][n] = {};  // the kept face's vertex attributes
+    alignas(16) float a[3][kPadded] = {};  // the kept face's vertex attributes
     LitBatch<T> pending;
+#if OPENCV_SHADING_SIMD128
+    v_float32x4 lanes[3][kPadded / 4];  // a, four attributes a vector
+    for (auto& vertex : lanes)
+        for (v_float32x4& l : vertex)
+            l = v_setzero_f32();
+#endif
     for (int word = 0; word < (width + 63) / 64; word++)
         for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
             const int x = word * 64 + __builtin_ctzll(bits);
@@ -204,15 +211,28 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
                 idRow[x] = screen.source[face];
             if (face != lastFace) {
                 const Vec3i& f = screen.mesh.faces[face];
-                for (int i = 0; i < 3; i++)
+                for (int i = 0; i < 3; i++) {
+                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
                     for (int k = 0; k < n; k++)
-                        a[i][k] = float(screen.attributes[size_t(f[i]) * n + k]);
+                        a[i][k] = float(source[k]);
+#if OPENCV_SHADING_SIMD128
+                    for (int j = 0; j < kPadded / 4; j++)
+                        lanes[i][j] = v_load_aligned(a[i] + 4 * j);
+#endif
+                }
                 lastFace = face;
             }
             const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
-            float v[n];
+            alignas(16) float v[kPadded];
+#if OPENCV_SHADING_SIMD128
+            // The scalar loop's operations, four attributes at a time.
+            const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
+            for (int j = 0; j < kPadded / 4; j++)
+                v_store_aligned(v + 4 * j, l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j]);
+#else
             for (int k = 0; k < n; k++)
                 v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
+#endif
             shadeAttributes<T, kSurface>(row + 3 * x, v, targets, pending);
         }
     pending.flush(*targets.lighting);
