@@ -321,8 +321,8 @@ inline int paintRowsFor(const Mat& canvas)
     return rowBytes * 32 <= (256 << 10) ? 32 : 16;
 }
 
-/** A band's z-buffer bookkeeping: per sample the face keeping it (-1: the depth buffer's own
-value) and whether this draw wrote it (a bit), and per block of 8 samples of a row an upper bound
+/** A band's z-buffer bookkeeping: per sample whether this draw wrote it (a bit) and if so the
+face keeping it, and per block of 8 samples of a row an upper bound
 of the depths written there. A face whose box holds only written samples, in blocks bounded by
 less than its nearest depth, is hidden: nothing of it can pass the depth test. Blocks of 8 match
 small faces: a closed surface's back faces hide behind front faces a few pixels wide. */
@@ -333,7 +333,7 @@ public:
         width_ = width;
         wordsPerRow_ = (width + 63) / 64;
         blocksPerRow_ = wordsPerRow_ << (6 - kDepthBoundShift);
-        kept_.assign(size_t(rows) * width, -1);
+        kept_.resize(size_t(rows) * width);  // read only where covered_ has the sample
         covered_.assign(size_t(rows) * wordsPerRow_, 0);
         bound_.assign(size_t(rows) * blocksPerRow_, 0.f);
     }

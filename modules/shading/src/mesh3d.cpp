@@ -141,7 +141,7 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
 template <typename T, Surface kSurface>
 struct SurfaceShaders {
     using Shader = SurfaceShader<T, kSurface>;
-    static constexpr int kAttributes = attributeCount(kSurface);
+    static constexpr int kAttributes = attributeCount(kSurface);  //!< per ScreenMesh vertex
     static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
     const ScreenMesh* screen;
     const DepthTargets* targets;
@@ -163,7 +163,7 @@ struct SurfaceShaders {
         for (int i = 0; i < 3; i++) {
             const int v = f[order[i]];
             s.invZ[i] = screen->invZ[v];
-            for (int k = 0; k < kAttributes; k++)
+            for (int k = 0; k < Shader::kAttributes; k++)  // none when lit per sample
                 s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
         }
         s.finishSetup(t);
@@ -233,7 +233,7 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
             for (int k = 0; k < n; k++)
                 v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
 #endif
-            shadeAttributes<T, kSurface>(row + 3 * x, v, targets, pending);
+            shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
         }
     pending.flush(*targets.lighting);
 }

@@ -277,17 +277,17 @@ constexpr bool litPerSample(Surface s)
 }
 
 /** Colours a sample from its interpolated attributes `a` (attributeCount(kSurface) values), or
-queues it in `pending` to be lit (litPerSample). Not for kFlat or kTexturedFaceLit, whose colour
-or lighting belongs to the face. */
+queues it in `pending` to be lit (litPerSample; null for the other surfaces). Not for kFlat or
+kTexturedFaceLit, whose colour or lighting belongs to the face. */
 template <typename T, Surface kSurface>
 inline void shadeAttributes(T* pixel, const float* a, const DepthTargets& targets,
-                            LitBatch<T>& pending)
+                            LitBatch<T>* pending)
 {
     if constexpr (kSurface == Surface::kGouraud) {
         for (int k = 0; k < 3; k++)
             pixel[k] = toChannel<T>(a[k]);
     } else if constexpr (kSurface == Surface::kPhong) {
-        pending.add(pixel, a, *targets.lighting);
+        pending->add(pixel, a, *targets.lighting);
     } else if constexpr (kSurface == Surface::kTextured) {
         targets.sampler<T>().sample(a[0], a[1], pixel);
     } else if constexpr (kSurface == Surface::kTexturedVertexLit) {
@@ -300,7 +300,7 @@ inline void shadeAttributes(T* pixel, const float* a, const DepthTargets& target
         targets.sampler<T>().sample(a[0], a[1], texel);
         const float v[9] = {a[2], a[3], a[4], a[5], a[6], a[7],
                             float(texel[0]), float(texel[1]), float(texel[2])};
-        pending.add(pixel, v, *targets.lighting);
+        pending->add(pixel, v, *targets.lighting);
     }
 }
 
@@ -312,7 +312,9 @@ from the exact weights (ExactWeights) and steps by its x-gradient, so a sample's
 only on the face and its span. */
 template <typename T, Surface kSurface>
 struct SurfaceShader {
-    static constexpr int kAttributes = attributeCount(kSurface);
+    //! The attributes a span interpolates itself: none for surfaces lit per sample, which are
+    //! always drawn deferred (BandOptions::deferred) from the ScreenMesh's vertices.
+    static constexpr int kAttributes = litPerSample(kSurface) ? 0 : attributeCount(kSurface);
     ExactWeights weights;
     double invZ[3];                                  //!< 1 / Zc per vertex, canonical order
     double stepX[3];                                 //!< d(w_i / z_i) / dx
@@ -345,9 +347,10 @@ struct SurfaceShader {
             q[i] *= invZ[i];
     }
 
-    //! The sample's colour from its q (unnormalized, `inv` = 1 / sum), or queued in `pending`.
-    void shadeSample(T* pixel, const double q[3], double inv, LitBatch<T>& pending) const
+    //! The sample's colour from its q (unnormalized, `inv` = 1 / sum).
+    void shadeSample(T* pixel, const double q[3], double inv) const
     {
+        static_assert(!litPerSample(kSurface), "surfaces lit per sample are drawn deferred");
         if constexpr (kSurface == Surface::kFlat) {
             pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
         } else {
@@ -362,7 +365,7 @@ struct SurfaceShader {
                     pixel[k] = toChannel<T>(float(
                         targets->lighting->combine(texel[k], faceLight[k], faceLight[3 + k])));
             } else {
-                shadeAttributes<T, kSurface>(pixel, a, *targets, pending);
+                shadeAttributes<T, kSurface>(pixel, a, *targets, nullptr);
             }
         }
     }
@@ -378,7 +381,6 @@ struct SurfaceShader {
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
-        LitBatch<T> pending;
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double inv = 1.0 / (q[0] + q[1] + q[2]);
@@ -386,10 +388,9 @@ struct SurfaceShader {
                 depthRow[x] = float(inv);
             if (idRow)
                 idRow[x] = faceId;
-            shadeSample(row + 3 * x, q, inv, pending);
+            if constexpr (!litPerSample(kSurface))
+                shadeSample(row + 3 * x, q, inv);
         }
-        if constexpr (litPerSample(kSurface))
-            pending.flush(*out.lighting);
     }
 
     /** Deferred painter's order (BandOptions::deferred without depthTested): the span's samples
@@ -415,8 +416,8 @@ struct SurfaceShader {
     }
 
     /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
-    smaller than what the sample keeps (kept face -1: the buffer's own value, depth only), so the
-    faces may come in any order. A taken sample gets its depth, its face in `kept`, the block
+    smaller than what the sample keeps (its bit in `covered` clear: the buffer's own value, depth
+    only), so the faces may come in any order. A taken sample gets its depth, its face in `kept`, the block
     bookkeeping of ZBufferBlocks, and its colour and id, or with `keptWeights` (deferred) the
     perspective-correct weights of the face's own vertices 1 and 2 for shading later. */
     void depthTest(const TriangleSetup& t, T* row, int y, int xBegin, int xEnd, int face,
@@ -428,14 +429,14 @@ struct SurfaceShader {
             out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
         double q[3];
         startSpan(t, xBegin, y, q);
-        LitBatch<T> pending;  // unused: surfaces lit per sample are deferred
         for (int x = xBegin; x < xEnd;
              x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
             const double inv = 1.0 / (q[0] + q[1] + q[2]);
             const float depth = float(inv);
             const float current = depthRow[x];
-            if (!(depth < current || (depth == current && kept[x] > face)))
-                continue;  // (kept -1 never loses a tie: the buffer's value was first)
+            if (!(depth < current ||
+                  (depth == current && (covered[x >> 6] >> (x & 63) & 1) && kept[x] > face)))
+                continue;  // (the buffer's own value never loses a tie: it was first)
             depthRow[x] = depth;
             kept[x] = face;
             covered[x >> 6] |= uint64_t(1) << (x & 63);
@@ -448,7 +449,7 @@ struct SurfaceShader {
             if (idRow)
                 idRow[x] = faceId;
             if constexpr (!litPerSample(kSurface))
-                shadeSample(row + 3 * x, q, inv, pending);
+                shadeSample(row + 3 * x, q, inv);
         }
     }
 };
