@@ -184,10 +184,14 @@ inline void streamingStoresDone()
 /** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
 class CoverageBits {
 public:
-    CoverageBits(int rows, int width)
-        : wordsPerRow_((width + 63) / 64), bits_(size_t(rows) * wordsPerRow_)
+    //! Room for `rows` rows of `width` pixels; call clear() before use.
+    void reset(int rows, int width)
     {
+        wordsPerRow_ = (width + 63) / 64;
+        bits_.resize(size_t(rows) * wordsPerRow_);
     }
+
+    size_t capacityBytes() const { return bits_.capacity() * sizeof(uint64_t); }
 
     void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
 
@@ -292,7 +296,7 @@ private:
 
     static int ctz(uint64_t v) { return __builtin_ctzll(v); }  // v != 0
 
-    int wordsPerRow_;
+    int wordsPerRow_ = 0;
     std::vector<uint64_t> bits_;
 };
 
@@ -369,6 +373,12 @@ public:
         return true;
     }
 
+    size_t capacityBytes() const
+    {
+        return kept_.capacity() * sizeof(int) + covered_.capacity() * sizeof(uint64_t) +
+               bound_.capacity() * sizeof(float);
+    }
+
 private:
     int width_ = 0, wordsPerRow_ = 0, blocksPerRow_ = 0;
     std::vector<int> kept_;
@@ -414,6 +424,32 @@ struct MeshWorkspace {
     static MeshWorkspace& ofThisThread()
     {
         thread_local MeshWorkspace workspace;
+        return workspace;
+    }
+};
+
+/** A band's scratch, kept by each thread that draws bands between calls (as MeshWorkspace):
+fresh buffers of this size come from fresh pages, whose faults cost more than a small band. */
+struct BandWorkspace {
+    CoverageBits coverage;
+    std::vector<uint64_t> scratch;                        //!< sortBandEntries'
+    std::vector<std::pair<double, uint64_t>> refineRun;  //!< refineEqualKeys'
+    std::vector<uchar> tile;         //!< streamed bands: their rows, drawn before streaming
+    ZBufferBlocks zbuffer;           //!< depth-tested drawing: see BandOptions
+    std::vector<float> keptWeights;  //!< deferred: per band sample, its kept face's weights
+    std::vector<int> keptFaces;      //!< deferred painter's: per band sample, its face
+
+    size_t capacityBytes() const
+    {
+        return coverage.capacityBytes() + scratch.capacity() * sizeof(uint64_t) +
+               refineRun.capacity() * sizeof(refineRun[0]) + tile.capacity() +
+               zbuffer.capacityBytes() + keptWeights.capacity() * sizeof(float) +
+               keptFaces.capacity() * sizeof(int);
+    }
+
+    static BandWorkspace& ofThisThread()
+    {
+        thread_local BandWorkspace workspace;
         return workspace;
     }
 };
@@ -640,13 +676,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     constexpr size_t kStreamedCanvasBytes = size_t(16) << 20;
     const bool streamBands = background && rowBytes * size.height >= kStreamedCanvasBytes;
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
-        CoverageBits coverage(bandRows, width);
-        std::vector<uint64_t> scratch;
-        AutoBuffer<uchar, 1> tile(0);  // the streamed bands' scratch rows, allocated on first use
-        std::vector<std::pair<double, uint64_t>> refineRun;
-        ZBufferBlocks zbuffer;           // depth-tested drawing: see BandOptions
-        std::vector<float> keptWeights;  // deferred: per band sample, its kept face's weights
-        std::vector<int> keptFaces;      // deferred painter's: per band sample, its face
+        BandWorkspace& bandWork = BandWorkspace::ofThisThread();
+        CoverageBits& coverage = bandWork.coverage;
+        coverage.reset(bandRows, width);
+        std::vector<uint64_t>& scratch = bandWork.scratch;
+        std::vector<uchar>& tile = bandWork.tile;
+        std::vector<std::pair<double, uint64_t>>& refineRun = bandWork.refineRun;
+        ZBufferBlocks& zbuffer = bandWork.zbuffer;
+        std::vector<float>& keptWeights = bandWork.keptWeights;
+        std::vector<int>& keptFaces = bandWork.keptFaces;
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -809,8 +847,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             uchar* bandData = canvasData + size_t(y0) * canvasStep;  // row y0
             size_t bandStep = canvasStep;
             if (streamBands) {
-                if (tile.size() == 0)
-                    tile.allocate(size_t(bandRows) * rowBytes);
+                tile.resize(size_t(bandRows) * rowBytes);
                 bandData = tile.data();
                 bandStep = rowBytes;
             } else {
@@ -908,6 +945,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         }
         if (streamBands)
             streamingStoresDone();
+        if (bandWork.capacityBytes() > MeshWorkspace::kKeepBytes)
+            bandWork = BandWorkspace();
     });
     timer.mark("bands");
     if (work.capacityBytes() > MeshWorkspace::kKeepBytes)
