@@ -676,15 +676,17 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     constexpr size_t kStreamedCanvasBytes = size_t(16) << 20;
     const bool streamBands = background && rowBytes * size.height >= kStreamedCanvasBytes;
     parallel_for_(Range(0, bandCount), [&](const Range& range) {
-        BandWorkspace& bandWork = BandWorkspace::ofThisThread();
-        CoverageBits& coverage = bandWork.coverage;
+        // The thread's kept buffers, moved into locals: the compiler keeps a local's fields in
+        // registers, which it cannot do for a thread_local's (every store might change them).
+        BandWorkspace& threadBuffers = BandWorkspace::ofThisThread();
+        CoverageBits coverage = std::move(threadBuffers.coverage);
         coverage.reset(bandRows, width);
-        std::vector<uint64_t>& scratch = bandWork.scratch;
-        std::vector<uchar>& tile = bandWork.tile;
-        std::vector<std::pair<double, uint64_t>>& refineRun = bandWork.refineRun;
-        ZBufferBlocks& zbuffer = bandWork.zbuffer;
-        std::vector<float>& keptWeights = bandWork.keptWeights;
-        std::vector<int>& keptFaces = bandWork.keptFaces;
+        std::vector<uint64_t> scratch = std::move(threadBuffers.scratch);
+        std::vector<uchar> tile = std::move(threadBuffers.tile);
+        std::vector<std::pair<double, uint64_t>> refineRun = std::move(threadBuffers.refineRun);
+        ZBufferBlocks zbuffer = std::move(threadBuffers.zbuffer);
+        std::vector<float> keptWeights = std::move(threadBuffers.keptWeights);
+        std::vector<int> keptFaces = std::move(threadBuffers.keptFaces);
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -945,8 +947,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         }
         if (streamBands)
             streamingStoresDone();
-        if (bandWork.capacityBytes() > MeshWorkspace::kKeepBytes)
-            bandWork = BandWorkspace();
+        threadBuffers = BandWorkspace{std::move(coverage), std::move(scratch),     std::move(refineRun),
+                             std::move(tile),     std::move(zbuffer),     std::move(keptWeights),
+                             std::move(keptFaces)};
+        if (threadBuffers.capacityBytes() > MeshWorkspace::kKeepBytes)
+            threadBuffers = BandWorkspace();
     });
     timer.mark("bands");
     if (work.capacityBytes() > MeshWorkspace::kKeepBytes)

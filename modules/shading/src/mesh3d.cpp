@@ -195,13 +195,14 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
     constexpr int n = attributeCount(kSurface);
     constexpr int kPadded = (n + 3) & ~3;
     int lastFace = -1;
-    alignas(16) float a[3][kPadded] = {};  // the kept face's vertex attributes
     LitBatch<T> pending;
 #if OPENCV_SHADING_SIMD128
-    v_float32x4 lanes[3][kPadded / 4];  // a, four attributes a vector
+    v_float32x4 lanes[3][kPadded / 4];  // the kept face's vertex attributes, four a vector
     for (auto& vertex : lanes)
         for (v_float32x4& l : vertex)
             l = v_setzero_f32();
+#else
+    float a[3][n] = {};  // the kept face's vertex attributes
 #endif
     for (int word = 0; word < (width + 63) / 64; word++)
         for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
@@ -213,11 +214,17 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
                 const Vec3i& f = screen.mesh.faces[face];
                 for (int i = 0; i < 3; i++) {
                     const double* source = screen.attributes.data() + size_t(f[i]) * n;
+#if OPENCV_SHADING_SIMD128
+                    // Each float as float(double) gives it; past n, zeros.
+                    auto pair = [&](int k) {
+                        return k + 2 <= n ? v_load(source + k)
+                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
+                    };
+                    for (int j = 0; j < kPadded / 4; j++)
+                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+#else
                     for (int k = 0; k < n; k++)
                         a[i][k] = float(source[k]);
-#if OPENCV_SHADING_SIMD128
-                    for (int j = 0; j < kPadded / 4; j++)
-                        lanes[i][j] = v_load_aligned(a[i] + 4 * j);
 #endif
                 }
                 lastFace = face;

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <tuple>
 #include <type_traits>
 #include <vector>
@@ -189,14 +190,16 @@ and colour, lit a batch at a time in float lanes where SIMD is built, else one b
 template <typename T>
 struct LitBatch {
     T* pixels[kLightBatch];
-    float values[9][kLightBatch];
+    //! Per sample, as queued: its 9 values and 3 zeros, so that four samples transpose at once.
+    alignas(16) float staged[kLightBatch][12];
     int count = 0;
 
     //! Queues a pixel; v: position, normal (not normalized), colour. Lights when the batch is full.
     void add(T* pixel, const float v[9], const Lighting& lighting)
     {
-        for (int k = 0; k < 9; k++)
-            values[k][count] = v[k];
+        float* sample = staged[count];
+        std::memcpy(sample, v, 9 * sizeof(float));
+        sample[9] = sample[10] = sample[11] = 0.f;
         pixels[count++] = pixel;
         if (count == kLightBatch)
             flush(lighting);
@@ -207,20 +210,32 @@ struct LitBatch {
         if (count == 0)
             return;
 #if OPENCV_SHADING_SIMD128
-        for (int i = count; i < ((count + 7) & ~7); i++)  // whole vectors
-            for (int k = 0; k < 9; k++)
-                values[k][i] = values[k][0];
+        const int padded = (count + 7) & ~7;  // whole vectors: the first sample repeated
+        for (int i = count; i < padded; i++)
+            std::memcpy(staged[i], staged[0], sizeof(staged[0]));
+        alignas(16) float rows[12][kLightBatch];  // the kernel's layout; rows 9 to 11 unread
+        for (int i = 0; i < padded; i += 4)
+            for (int j = 0; j < 12; j += 4) {
+                v_float32x4 r0, r1, r2, r3;
+                v_transpose4x4(v_load_aligned(staged[i] + j), v_load_aligned(staged[i + 1] + j),
+                               v_load_aligned(staged[i + 2] + j),
+                               v_load_aligned(staged[i + 3] + j), r0, r1, r2, r3);
+                v_store_aligned(rows[j] + i, r0);
+                v_store_aligned(rows[j + 1] + i, r1);
+                v_store_aligned(rows[j + 2] + i, r2);
+                v_store_aligned(rows[j + 3] + i, r3);
+            }
         float lit[3][kLightBatch];
-        shadeBatch(lighting.kernel, values, lit, count);
+        shadeBatch(lighting.kernel, rows, lit, count);
         for (int i = 0; i < count; i++)
             for (int k = 0; k < 3; k++)
                 pixels[i][k] = toChannel<T>(lit[k][i]);
 #else
         for (int i = 0; i < count; i++) {
-            const Vec3d c = lighting.shade(
-                Vec3d(values[0][i], values[1][i], values[2][i]),
-                unitOrZero(Vec3d(values[3][i], values[4][i], values[5][i])),
-                Vec3d(values[6][i], values[7][i], values[8][i]));
+            const float* v = staged[i];
+            const Vec3d c = lighting.shade(Vec3d(v[0], v[1], v[2]),
+                                           unitOrZero(Vec3d(v[3], v[4], v[5])),
+                                           Vec3d(v[6], v[7], v[8]));
             for (int k = 0; k < 3; k++)
                 pixels[i][k] = toChannel<T>(float(c[k]));
         }
