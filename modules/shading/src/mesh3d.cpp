@@ -14,6 +14,8 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include <atomic>
+#include <climits>
 #include <cmath>
 #include <limits>
 
@@ -56,6 +58,22 @@ void forChunks(int count, int chunk, Fn&& fn)
         for (int c = r.start; c < r.end; c++)
             fn(c * chunk, std::min(count, (c + 1) * chunk));
     });
+}
+
+//! The index of the first vector of `v` with a non-finite value, or -1; in parallel chunks.
+int firstNonFinite(const std::vector<Vec3d>& v)
+{
+    std::atomic<int> first(INT_MAX);
+    forChunks(int(v.size()), 16384, [&](int begin, int end) {
+        for (int i = begin; i < end && i < first.load(std::memory_order_relaxed); i++)
+            if (!isFinite(v[i])) {
+                int seen = first.load();
+                while (i < seen && !first.compare_exchange_weak(seen, i)) {
+                }
+                break;
+            }
+    });
+    return first == INT_MAX ? -1 : first.load();
 }
 
 /** Vertex normals (seed 004): the normalized sum of the unit normals of the faces using each
@@ -577,24 +595,27 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     }
     const Camera cam = readCamera(cameraMatrix, rvec, tvec);
     thread_local Mesh3dInput in;
-    readVectors(verts3d, "verts3d", -1, in.verts);
+    // Shapes are checked as each array is read; the values are converted together, in parallel,
+    // by readFaces.
+    PendingConversions pending;
+    readVectors(verts3d, "verts3d", -1, in.verts, &pending);
     const int vertexCount = int(in.verts.size());
     if (textured) {
-        readPoints(texCoords, "texCoords", vertexCount, in.texCoords);
+        readPoints(texCoords, "texCoords", vertexCount, in.texCoords, &pending);
         in.colors.clear();
     } else {
-        readColors(vcolors, "vcolors", vertexCount, in.colors);
+        readColors(vcolors, "vcolors", vertexCount, in.colors, &pending);
         in.texCoords.clear();
     }
-    readFaces(faces, "faces", vertexCount, in.faces);
+    if (!normals.empty())
+        readVectors(normals, "normals", vertexCount, in.normals, &pending);
+    readFaces(faces, "faces", vertexCount, in.faces, &pending);  // last: runs the conversions
     const bool lit = !settings.lights.empty();
     const bool needNormals = lit && settings.shadeType != SHADE_FLAT;
     if (!normals.empty()) {
-        readVectors(normals, "normals", vertexCount, in.normals);
-        for (int i = 0; i < vertexCount; i++)
-            if (!isFinite(in.normals[i]))
-                CV_Error(Error::StsOutOfRange,
-                         format("normals: normal %d is not finite", i));
+        const int bad = firstNonFinite(in.normals);
+        if (bad >= 0)
+            CV_Error(Error::StsOutOfRange, format("normals: normal %d is not finite", bad));
     } else if (needNormals) {
         vertexNormalsOf(in.verts, in.faces, in.normals, in.faceNormals);
     }
