@@ -11,20 +11,18 @@
 namespace cv {
 namespace shading {
 namespace detail {
+#if OPENCV_SHADING_HAVE_AVX2
 namespace {
 
-//! Whether the AVX2 build is there and the CPU runs it (OPENCV_CPU_DISABLE=AVX2 turns it off).
+//! Whether the CPU runs the AVX2 build (OPENCV_CPU_DISABLE=AVX2 turns it off).
 bool useAvx2()
 {
-#if OPENCV_SHADING_HAVE_AVX2
     static const bool avx2 = checkHardwareSupport(CPU_AVX2);
     return avx2;
-#else
-    return false;
-#endif
 }
 
 }  // namespace
+#endif
 
 void shadeBatch(const LightingKernel& k, const float in[9][kLightBatch],
                 float out[3][kLightBatch], int count)

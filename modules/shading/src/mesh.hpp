@@ -347,7 +347,7 @@ public:
     float* boundRow(int r) { return bound_.data() + size_t(r) * blocksPerRow_; }
 
     //! Whether rows [r0, r1), columns [c0, c1] are written and all nearer than `nearest`.
-    bool hidden(int r0, int r1, int c0, int c1, float nearest) const
+    __attribute__((always_inline)) bool hidden(int r0, int r1, int c0, int c1, float nearest) const
     {
         const int w0 = c0 >> 6, w1 = c1 >> 6;
         const int b0 = c0 >> kDepthBoundShift, b1 = c1 >> kDepthBoundShift;

@@ -178,7 +178,8 @@ struct ExactWeights {
     }
 
     //! Barycentric weights of the sample (x, y): exact edge functions, one rounding each.
-    void at(const TriangleSetup& t, int x, int y, double& w0, double& w1, double& w2) const
+    __attribute__((always_inline)) void at(const TriangleSetup& t, int x, int y, double& w0,
+                                           double& w1, double& w2) const
     {
         if (t.narrow) {  // the same integers as edgeValue's, from precomputed coefficients
             w0 = double(edgeAt0[0] + edgeDx[0] * x + edgeDy[0] * y) * invArea2;

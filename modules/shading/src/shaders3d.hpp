@@ -385,27 +385,40 @@ struct SurfaceShader {
         }
     }
 
+    /** Calls fn(x, q, inv) for each sample x of the span: q its unnormalized perspective
+    weights, stepped from the span's exact start, and inv = 1 / sum q its depth. */
+    template <typename Fn>
+    __attribute__((always_inline)) void forSpanSamples(const TriangleSetup& t, int y, int xBegin,
+                                                       int xEnd, Fn&& fn) const
+    {
+        double q[3];
+        startSpan(t, xBegin, y, q);
+        for (int x = xBegin; x < xEnd;
+             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2])
+            fn(x, q, 1.0 / (q[0] + q[1] + q[2]));
+    }
+
+    //! Row y of a canvas-sized output (depth or ids), or null when that output is not drawn.
+    template <typename P>
+    static P* outputRow(uchar* data, size_t step, int y)
+    {
+        return data ? reinterpret_cast<P*>(data + size_t(y) * step) : nullptr;
+    }
+
     //! Draws the span without a depth test (painter's order): depth, face id and colour.
     void operator()(const TriangleSetup& t, T* row, int y, int /*spanBegin*/, int xBegin,
                     int xEnd) const
     {
-        const DepthTargets& out = *targets;
-        float* const depthRow =
-            out.depth ? reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep) : nullptr;
-        int* const idRow =
-            out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
-        double q[3];
-        startSpan(t, xBegin, y, q);
-        for (int x = xBegin; x < xEnd;
-             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const double inv = 1.0 / (q[0] + q[1] + q[2]);
+        float* const depthRow = outputRow<float>(targets->depth, targets->depthStep, y);
+        int* const idRow = outputRow<int>(targets->ids, targets->idsStep, y);
+        forSpanSamples(t, y, xBegin, xEnd, [&](int x, const double q[3], double inv) {
             if (depthRow)
                 depthRow[x] = float(inv);
             if (idRow)
                 idRow[x] = faceId;
             if constexpr (!litPerSample(kSurface))
                 shadeSample(row + 3 * x, q, inv);
-        }
+        });
     }
 
     /** Deferred painter's order (BandOptions::deferred without depthTested): the span's samples
@@ -414,44 +427,33 @@ struct SurfaceShader {
     void keep(const TriangleSetup& t, int y, int xBegin, int xEnd, int face, int* kept,
               float* keptWeights) const
     {
-        const DepthTargets& out = *targets;
-        float* const depthRow =
-            out.depth ? reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep) : nullptr;
-        double q[3];
-        startSpan(t, xBegin, y, q);
-        for (int x = xBegin; x < xEnd;
-             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const double inv = 1.0 / (q[0] + q[1] + q[2]);
+        float* const depthRow = outputRow<float>(targets->depth, targets->depthStep, y);
+        forSpanSamples(t, y, xBegin, xEnd, [&](int x, const double q[3], double inv) {
             if (depthRow)
                 depthRow[x] = float(inv);
             kept[x] = face;
             keptWeights[2 * x] = float(q[slotOf1] * inv);
             keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
-        }
+        });
     }
 
     /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
-    smaller than what the sample keeps (its bit in `covered` clear: the buffer's own value, depth
-    only), so the faces may come in any order. A taken sample gets its depth, its face in `kept`, the block
-    bookkeeping of ZBufferBlocks, and its colour and id, or with `keptWeights` (deferred) the
-    perspective-correct weights of the face's own vertices 1 and 2 for shading later. */
+    smaller than what the sample keeps (its bit in `covered` clear: the buffer's own value,
+    depth only), so the faces may come in any order. A taken sample gets its depth, its face in
+    `kept`, the block bookkeeping of ZBufferBlocks, and its colour and id, or with `keptWeights`
+    (deferred) the perspective-correct weights of the face's own vertices 1 and 2 for shading
+    later. */
     void depthTest(const TriangleSetup& t, T* row, int y, int xBegin, int xEnd, int face,
                    int* kept, float* keptWeights, uint64_t* covered, float* bound) const
     {
-        const DepthTargets& out = *targets;
-        float* const depthRow = reinterpret_cast<float*>(out.depth + size_t(y) * out.depthStep);
-        int* const idRow =
-            out.ids ? reinterpret_cast<int*>(out.ids + size_t(y) * out.idsStep) : nullptr;
-        double q[3];
-        startSpan(t, xBegin, y, q);
-        for (int x = xBegin; x < xEnd;
-             x++, q[0] += stepX[0], q[1] += stepX[1], q[2] += stepX[2]) {
-            const double inv = 1.0 / (q[0] + q[1] + q[2]);
+        float* const depthRow = outputRow<float>(targets->depth, targets->depthStep, y);
+        int* const idRow = outputRow<int>(targets->ids, targets->idsStep, y);
+        forSpanSamples(t, y, xBegin, xEnd, [&](int x, const double q[3], double inv) {
             const float depth = float(inv);
             const float current = depthRow[x];
             if (!(depth < current ||
                   (depth == current && (covered[x >> 6] >> (x & 63) & 1) && kept[x] > face)))
-                continue;  // (the buffer's own value never loses a tie: it was first)
+                return;  // (the buffer's own value never loses a tie: it was first)
             depthRow[x] = depth;
             kept[x] = face;
             covered[x >> 6] |= uint64_t(1) << (x & 63);
@@ -459,13 +461,13 @@ struct SurfaceShader {
             if (keptWeights) {
                 keptWeights[2 * x] = float(q[slotOf1] * inv);
                 keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
-                continue;
+                return;
             }
             if (idRow)
                 idRow[x] = faceId;
             if constexpr (!litPerSample(kSurface))
                 shadeSample(row + 3 * x, q, inv);
-        }
+        });
     }
 };
 
