@@ -50,6 +50,16 @@ inline bool isFinite(const Vec3d& v)
     return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+/** Items per parallel chunk of the screen mesh's passes (transforming, lighting, clipping) for
+`count` items: at most `most`, and few enough per chunk to make 32 chunks, so that the threads
+get even shares of a small mesh (the knot's 5,000 vertices were two chunks of 4,096 and 904),
+but not fewer than 512. It depends on the count only: passes that index per-chunk tables by
+begin / chunk agree, whatever the thread count. */
+inline int chunkSizeFor(int count, int most)
+{
+    return std::max(512, std::min(most, (count + 31) / 32));
+}
+
 //! Splits [0, count) into chunks for parallel_for_ and calls fn(begin, end) for each.
 template <typename Fn>
 void forChunks(int count, int chunk, Fn&& fn)
@@ -318,7 +328,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     // Gouraud: each vertex lit once, its colour (or D and S when textured, after the uv).
     const bool litVertices =
         surface == Surface::kTexturedVertexLit || (surface == Surface::kGouraud && lit);
-    forChunks(vertexCount, 4096, [&](int begin, int end) {
+    forChunks(vertexCount, chunkSizeFor(vertexCount, 4096), [&](int begin, int end) {
         if (litVertices)
             for (int block = begin; block < end; block += kLightBlock) {
                 const int count = std::min(kLightBlock, end - block);
@@ -369,10 +379,10 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     // faces and new vertices themselves. Face order (and so the tie order) is kept.
     enum : uint8_t { kSkip = 0, kWhole = 1, kCutOne = 2, kCutTwo = 3 };  // vertices behind
     std::vector<uint8_t> kind(faceCount);
-    constexpr int kChunk = 4096;
-    const int chunks = (faceCount + kChunk - 1) / kChunk;
+    const int faceChunk = chunkSizeFor(faceCount, 4096);
+    const int chunks = (faceCount + faceChunk - 1) / faceChunk;
     std::vector<int> chunkFaces(chunks + 1, 0), chunkVertices(chunks + 1, 0);
-    forChunks(faceCount, kChunk, [&](int begin, int end) {
+    forChunks(faceCount, faceChunk, [&](int begin, int end) {
         int faces = 0, vertices = 0;
         for (int i = begin; i < end; i++) {
             const Vec3i& f = in.faces[i];
@@ -397,15 +407,15 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             faces += kind[i] == kWhole || kind[i] == kCutTwo ? 1 : kind[i] == kCutOne ? 2 : 0;
             vertices += kind[i] >= kCutOne ? 2 : 0;
         }
-        chunkFaces[begin / kChunk + 1] = faces;
-        chunkVertices[begin / kChunk + 1] = vertices;
+        chunkFaces[begin / faceChunk + 1] = faces;
+        chunkVertices[begin / faceChunk + 1] = vertices;
     });
     // Lit flat faces: each lit once, at its centroid with its face normal and mean colour (or,
     // textured, its D and S).
     std::vector<Vec6f>& faceLit = in.faceLit;
     if (shade == SHADE_FLAT && lit) {
         faceLit.resize(faceCount);
-        forChunks(faceCount, kChunk, [&](int begin, int end) {
+        forChunks(faceCount, faceChunk, [&](int begin, int end) {
             const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
             float points[kLightBlock * 9] = {}, values[kLightBlock * 6];
             int slots[kLightBlock];
@@ -454,9 +464,9 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.invZ.resize(outVertices);
     screen.attributes.resize(size_t(outVertices) * stride);
 
-    forChunks(faceCount, kChunk, [&](int begin, int end) {
-        int nextFace = chunkFaces[begin / kChunk];
-        int nextVertex = vertexCount + chunkVertices[begin / kChunk];
+    forChunks(faceCount, faceChunk, [&](int begin, int end) {
+        int nextFace = chunkFaces[begin / faceChunk];
+        int nextVertex = vertexCount + chunkVertices[begin / faceChunk];
         // The point where edge front -> back meets the near plane, as a new vertex. Always
         // computed from the vertex in front, so faces sharing the edge share the point exactly.
         auto cut = [&](int front, int back) {
