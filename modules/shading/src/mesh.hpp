@@ -326,10 +326,10 @@ inline int paintRowsFor(const Mat& canvas)
 }
 
 /** A band's z-buffer bookkeeping: per sample whether this draw wrote it (a bit) and if so the
-face keeping it, and per block of 8 samples of a row an upper bound
-of the depths written there. A face whose box holds only written samples, in blocks bounded by
-less than its nearest depth, is hidden: nothing of it can pass the depth test. Blocks of 8 match
-small faces: a closed surface's back faces hide behind front faces a few pixels wide. */
+face keeping it, and per block of 8 samples of a row an upper bound of the depths written there.
+A face whose box holds only written samples, in blocks bounded by less than its nearest depth,
+is hidden: nothing of it can pass the depth test. Blocks of 8 match small faces: a closed
+surface's back faces hide behind front faces a few pixels wide. */
 class ZBufferBlocks {
 public:
     void reset(int rows, int width)
@@ -947,9 +947,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         }
         if (streamBands)
             streamingStoresDone();
-        threadBuffers = BandWorkspace{std::move(coverage), std::move(scratch),     std::move(refineRun),
-                             std::move(tile),     std::move(zbuffer),     std::move(keptWeights),
-                             std::move(keptFaces)};
+        threadBuffers = BandWorkspace{std::move(coverage), std::move(scratch),
+                                      std::move(refineRun), std::move(tile),
+                                      std::move(zbuffer), std::move(keptWeights),
+                                      std::move(keptFaces)};
         if (threadBuffers.capacityBytes() > MeshWorkspace::kKeepBytes)
             threadBuffers = BandWorkspace();
     });

@@ -19,11 +19,11 @@ namespace cv {
 namespace shading {
 namespace detail {
 
-//! Converts a colour channel to the canvas's element type (8-bit: rounded and saturated).
 /** Samples per depth bound of the z-buffer's occlusion test, as a shift (8): the span shaders
 keep the bounds, ZBufferBlocks (mesh.hpp) tests faces against them. */
 constexpr int kDepthBoundShift = 3;
 
+//! Converts a colour channel to the canvas's element type (8-bit: rounded and saturated).
 template <typename T>
 inline T toChannel(float v)
 {

@@ -34,6 +34,10 @@ struct Lighting {
     double kd = 0, ks = 0, shininess = 0;
     double unit = 1;            //!< the canvas's colour units per lighting unit (1 or 255)
 
+    Lighting() = default;
+    Lighting(const Lighting&) = delete;  // `kernel` points into this object's lightData
+    Lighting& operator=(const Lighting&) = delete;
+
     bool lit() const { return !lights.empty(); }
 
     //! v^shininess for v in (0, 1]; whole exponents up to 256 by squaring (std::pow is several
@@ -398,6 +402,14 @@ struct SurfaceShader {
             fn(x, q, 1.0 / (q[0] + q[1] + q[2]));
     }
 
+    //! Deferred shading's record of sample x: the perspective-correct weights of the face's own
+    //! vertices 1 and 2 (vertex 0's is one less their sum).
+    void keepWeights(int x, const double q[3], double inv, float* keptWeights) const
+    {
+        keptWeights[2 * x] = float(q[slotOf1] * inv);
+        keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
+    }
+
     //! Row y of a canvas-sized output (depth or ids), or null when that output is not drawn.
     template <typename P>
     static P* outputRow(uchar* data, size_t step, int y)
@@ -432,8 +444,7 @@ struct SurfaceShader {
             if (depthRow)
                 depthRow[x] = float(inv);
             kept[x] = face;
-            keptWeights[2 * x] = float(q[slotOf1] * inv);
-            keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
+            keepWeights(x, q, inv, keptWeights);
         });
     }
 
@@ -459,8 +470,7 @@ struct SurfaceShader {
             covered[x >> 6] |= uint64_t(1) << (x & 63);
             bound[x >> kDepthBoundShift] = std::max(bound[x >> kDepthBoundShift], depth);
             if (keptWeights) {
-                keptWeights[2 * x] = float(q[slotOf1] * inv);
-                keptWeights[2 * x + 1] = float(q[slotOf2] * inv);
+                keepWeights(x, q, inv, keptWeights);
                 return;
             }
             if (idRow)
