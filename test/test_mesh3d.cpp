@@ -452,6 +452,41 @@ TEST(DrawMesh3d, SameImageForAnyThreadCount)
     setNumThreads(threads);
 }
 
+// Given normals are used as unit normals: scaling them changes nothing. A mesh big enough for the
+// normals to be normalized in parallel chunks, at several thread counts.
+TEST(DrawMesh3d, GivenNormalsAreNormalizedAtAnyThreadCount)
+{
+    std::mt19937 rng(11);
+    const Cam cam(150, 128, 128);
+    std::vector<Vec3d> v, c;
+    std::vector<Vec3i> f;
+    randomMesh(rng, 300000, 3000, v, f, c);  // many vertices: the workers take chunks too
+    std::uniform_real_distribution<double> u(-1, 1), scale(0.1, 9);
+    std::vector<Vec3d> unit, scaled;
+    for (size_t i = 0; i < v.size(); i++) {
+        const Vec3d n = cv::normalize(Vec3d(u(rng), u(rng), u(rng)) + Vec3d(0, 0, -1.5));
+        unit.push_back(n);
+        scaled.push_back(n * scale(rng));
+    }
+    const int threads = getNumThreads();
+    for (int shade : {SHADE_GOURAUD, SHADE_PHONG}) {
+        RenderSettings s;
+        s.shadeType = shade;
+        s.lights = {PointLight(Point3d(0, -3, 0), Vec3d(1, 0.8, 0.6))};
+        setNumThreads(1);
+        Mat expected = shading_test::sentinelCanvas(Size(256, 256));
+        drawMesh3d(expected, v, f, c, cam.K, cam.rvec, cam.tvec, s, unit);
+        for (int n : {1, 2, 8}) {
+            setNumThreads(n);
+            Mat img = shading_test::sentinelCanvas(Size(256, 256));
+            drawMesh3d(img, v, f, c, cam.K, cam.rvec, cam.tvec, s, scaled);
+            // Normalizing a scaled unit vector may move its last bit: colours agree to rounding.
+            EXPECT_LE(shading_test::maxAbsDiff(img, expected), 1e-5) << shade << " " << n;
+        }
+    }
+    setNumThreads(threads);
+}
+
 TEST(DrawMesh3d, NonFiniteVerticesSkipTheirFaces)
 {
     const Cam cam;

@@ -59,10 +59,12 @@ inline int entryFace(uint64_t entry)
 }
 
 /** Sorts a band's entries by their high word, stably, approximately: the keys are narrowed to
-16 bits (relative to the band's smallest, dropping low bits when the band's keys span more), which
-two 8-bit LSD radix passes sort; entries with equal 16-bit keys may still be out of order
-(refineEqualKeys completes the order). The entries' high words become the 16-bit keys. */
-inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch)
+`keyBits` bits, 16 or 8 (relative to the band's smallest, dropping low bits when the band's keys
+span more), which one 8-bit LSD radix pass per byte sorts; entries with equal narrowed keys may
+still be out of order (refineEqualKeys completes the order). The entries' high words become the
+narrowed keys. */
+inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch,
+                            int keyBits = 16)
 {
     if (n < 2)
         return;
@@ -72,8 +74,9 @@ inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& sc
         lo = std::min(lo, key);
         hi = std::max(hi, key);
     }
+    const uint32_t keyMax = (uint32_t(1) << keyBits) - 1;
     int drop = 0;
-    while (((hi - lo) >> drop) > 0xffff)
+    while (((hi - lo) >> drop) > keyMax)
         drop++;
     uint32_t count[2][256] = {};
     for (size_t i = 0; i < n; i++) {
@@ -85,7 +88,7 @@ inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& sc
     scratch.resize(std::max(scratch.size(), n));
     uint64_t* src = items;
     uint64_t* dst = scratch.data();
-    for (int pass = 0; pass < 2; pass++) {
+    for (int pass = 0; pass < keyBits / 8; pass++) {
         const int shift = 32 + 8 * pass;
         uint32_t* c = count[pass];
         if (c[(items[0] >> shift) & 0xff] == n)
@@ -715,7 +718,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             // equal means the later face first (the painter draws it last, on top).
             uint64_t* order = binned.data() + bandStart[band];
             const size_t orderSize = bandStart[band + 1] - bandStart[band];
-            if (byDepth) {
+            if (byDepth && depthTested) {
+                // The depth test decides every sample whatever the order: the order only lets
+                // nearer faces hide farther ones before setup, for which 256 levels will do.
+                sortBandEntries(order, orderSize, scratch, 8);
+            } else if (byDepth) {
                 sortBandEntries(order, orderSize, scratch);
                 refineEqualKeys(order, orderSize, depths.data(), refineRun);
             }

@@ -593,6 +593,7 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
                   const RenderSettings& settings, InputArray normals,
                   InputOutputArray depthBuffer, OutputArray faceIds, bool textured)
 {
+    StageTimer timer;
     // Every argument is checked before anything is written.
     checkCanvas(canvasArr, "canvas");
     checkSettings(settings);
@@ -620,6 +621,7 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     if (!normals.empty())
         readVectors(normals, "normals", vertexCount, in.normals, &pending);
     readFaces(faces, "faces", vertexCount, in.faces, &pending);  // last: runs the conversions
+    timer.mark("read");
     const bool lit = !settings.lights.empty();
     const bool needNormals = lit && settings.shadeType != SHADE_FLAT;
     if (!normals.empty()) {
@@ -647,12 +649,20 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     for (const PointLight& l : settings.lights)
         lighting.lights.push_back({Vec3d(l.position), l.intensity});
     lighting.prepare();
-    if (!normals.empty() || needNormals)
-        for (Vec3d& n : in.normals)
-            n = unitOrZero(n);  // used as unit normals (one-sided, as given)
+    if (!normals.empty() || needNormals) {  // used as unit normals (one-sided, as given)
+        // By reference: inside the lambda, `in` would name the worker thread's own.
+        std::vector<Vec3d>& unitNormals = in.normals;
+        forChunks(int(unitNormals.size()), chunkSizeFor(int(unitNormals.size()), 16384),
+                  [&](int begin, int end) {
+                      for (int i = begin; i < end; i++)
+                          unitNormals[i] = unitOrZero(unitNormals[i]);
+                  });
+    }
 
+    timer.mark("normals");
     thread_local ScreenMesh screen;
     buildScreenMesh(in, cam, settings, lighting, screen);
+    timer.mark("screen");
 
     // Outputs: created only now that every argument passed.
     const bool zbuffer = settings.visibility == VISIBILITY_ZBUFFER;
@@ -674,6 +684,7 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
         ids = faceIds.getMat();
         ids.setTo(Scalar::all(-1));
     }
+    timer.mark("outputs");
     DepthTargets targets;
     targets.depth = depth.empty() ? nullptr : depth.data;
     targets.depthStep = depth.empty() ? 0 : depth.step[0];
