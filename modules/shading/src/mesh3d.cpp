@@ -326,6 +326,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.attributes.resize(size_t(vertexCount) * stride);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     // Gouraud: each vertex lit once, its colour (or D and S when textured, after the uv).
+    // Normals are used as unit normals (one-sided, as given), normalized where they are read.
     const bool litVertices =
         surface == Surface::kTexturedVertexLit || (surface == Surface::kGouraud && lit);
     forChunks(vertexCount, chunkSizeFor(vertexCount, 4096), [&](int begin, int end) {
@@ -334,14 +335,16 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 const int count = std::min(kLightBlock, end - block);
                 const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
                 float points[kLightBlock * 9], values[kLightBlock * 6];
-                for (int j = 0; j < count; j++)
+                for (int j = 0; j < count; j++) {
+                    const Vec3d normal = unitOrZero(in.normals[block + j]);
                     for (int k = 0; k < 3; k++) {
                         float* p = points + inStride * j;
                         p[k] = float(in.verts[block + j][k]);
-                        p[3 + k] = float(in.normals[block + j][k]);
+                        p[3 + k] = float(normal[k]);
                         if (!textured)
                             p[6 + k] = float(in.colors[block + j][k]);
                     }
+                }
                 if (textured)
                     lighting.termsMany(points, values, count);
                 else
@@ -367,7 +370,8 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 std::copy(in.colors[i].val, in.colors[i].val + 3, a);
             } else if (surface == Surface::kPhong || surface == Surface::kTexturedSampleLit) {
                 std::copy(in.verts[i].val, in.verts[i].val + 3, a);
-                std::copy(in.normals[i].val, in.normals[i].val + 3, a + 3);
+                const Vec3d normal = unitOrZero(in.normals[i]);
+                std::copy(normal.val, normal.val + 3, a + 3);
                 if (!textured)
                     std::copy(in.colors[i].val, in.colors[i].val + 3, a + 6);
             }
@@ -649,16 +653,6 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     for (const PointLight& l : settings.lights)
         lighting.lights.push_back({Vec3d(l.position), l.intensity});
     lighting.prepare();
-    if (!normals.empty() || needNormals) {  // used as unit normals (one-sided, as given)
-        // By reference: inside the lambda, `in` would name the worker thread's own.
-        std::vector<Vec3d>& unitNormals = in.normals;
-        forChunks(int(unitNormals.size()), chunkSizeFor(int(unitNormals.size()), 16384),
-                  [&](int begin, int end) {
-                      for (int i = begin; i < end; i++)
-                          unitNormals[i] = unitOrZero(unitNormals[i]);
-                  });
-    }
-
     timer.mark("normals");
     thread_local ScreenMesh screen;
     buildScreenMesh(in, cam, settings, lighting, screen);
