@@ -386,6 +386,47 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     const int faceChunk = chunkSizeFor(faceCount, 4096);
     const int chunks = (faceCount + faceChunk - 1) / faceChunk;
     std::vector<int> chunkFaces(chunks + 1, 0), chunkVertices(chunks + 1, 0);
+    // Lit flat faces: each lit once, at its centroid with its face normal and mean colour (or,
+    // textured, its D and S), in the pass that finds which faces are drawn.
+    std::vector<Vec6f>& faceLit = in.faceLit;
+    const bool litFaces = shade == SHADE_FLAT && lit;
+    if (litFaces)
+        faceLit.resize(faceCount);
+    auto lightFaces = [&](int begin, int end) {
+        const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
+        float points[kLightBlock * 9] = {}, values[kLightBlock * 6];
+        int slots[kLightBlock];
+        int count = 0;
+        auto light = [&]() {
+            if (textured)
+                lighting.termsMany(points, values, count);
+            else
+                lighting.shadeMany(points, values, count);
+            for (int j = 0; j < count; j++)
+                for (int k = 0; k < outStride; k++)
+                    faceLit[slots[j]][k] = values[outStride * j + k];
+            count = 0;
+        };
+        for (int i = begin; i < end; i++) {
+            if (kind[i] == kSkip)
+                continue;
+            const Vec3i& f = in.faces[i];
+            const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
+            const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
+            float* p = points + inStride * count;
+            for (int k = 0; k < 3; k++) {
+                p[k] = float(centroid[k]);
+                p[3 + k] = float(n[k]);
+                if (!textured)
+                    p[6 + k] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
+                                      in.colors[f[2]][k]) / 3.0);
+            }
+            slots[count++] = i;
+            if (count == kLightBlock)
+                light();
+        }
+        light();
+    };
     forChunks(faceCount, faceChunk, [&](int begin, int end) {
         int faces = 0, vertices = 0;
         for (int i = begin; i < end; i++) {
@@ -413,48 +454,9 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         }
         chunkFaces[begin / faceChunk + 1] = faces;
         chunkVertices[begin / faceChunk + 1] = vertices;
+        if (litFaces)
+            lightFaces(begin, end);
     });
-    // Lit flat faces: each lit once, at its centroid with its face normal and mean colour (or,
-    // textured, its D and S).
-    std::vector<Vec6f>& faceLit = in.faceLit;
-    if (shade == SHADE_FLAT && lit) {
-        faceLit.resize(faceCount);
-        forChunks(faceCount, faceChunk, [&](int begin, int end) {
-            const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
-            float points[kLightBlock * 9] = {}, values[kLightBlock * 6];
-            int slots[kLightBlock];
-            int count = 0;
-            auto light = [&]() {
-                if (textured)
-                    lighting.termsMany(points, values, count);
-                else
-                    lighting.shadeMany(points, values, count);
-                for (int j = 0; j < count; j++)
-                    for (int k = 0; k < outStride; k++)
-                        faceLit[slots[j]][k] = values[outStride * j + k];
-                count = 0;
-            };
-            for (int i = begin; i < end; i++) {
-                if (kind[i] == kSkip)
-                    continue;
-                const Vec3i& f = in.faces[i];
-                const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
-                const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
-                float* p = points + inStride * count;
-                for (int k = 0; k < 3; k++) {
-                    p[k] = float(centroid[k]);
-                    p[3 + k] = float(n[k]);
-                    if (!textured)
-                        p[6 + k] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
-                                          in.colors[f[2]][k]) / 3.0);
-                }
-                slots[count++] = i;
-                if (count == kLightBlock)
-                    light();
-            }
-            light();
-        });
-    }
     for (int c = 0; c < chunks; c++) {
         chunkFaces[c + 1] += chunkFaces[c];
         chunkVertices[c + 1] += chunkVertices[c];
@@ -513,7 +515,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 }
             }
             Vec6f flat;  // kFlat: the colour; kTexturedFaceLit: D, S
-            if (shade == SHADE_FLAT && lit) {
+            if (litFaces) {
                 flat = faceLit[i];
             } else if (surface == Surface::kFlat) {  // unlit: the mean as the 2D flats() takes it
                 const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
