@@ -201,6 +201,33 @@ TEST(DrawMesh3d, DepthIsCameraZ)
     EXPECT_NEAR(covered, 1800, 70);
 }
 
+// The outputs a call creates are filled everywhere (depth +inf, ids -1), in both visibilities,
+// and an ids image passed in is overwritten even where nothing is drawn.
+TEST(DrawMesh3d, CreatedOutputsAreFilledEverywhere)
+{
+    const Cam cam;
+    const std::vector<Vec3d> v = {{-1, -1, 5}, {2, -1, 5}, {-1, 2, 5}};
+    const std::vector<Vec3d> c(3, Vec3d(0.5, 0.5, 0.5));
+    for (int vis : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER}) {
+        RenderSettings s;
+        s.visibility = vis;
+        Mat canvas = shading_test::sentinelCanvas(Size(150, 300)), depth;
+        Mat ids(300, 150, CV_32SC1, Scalar(7));  // stale content, right size and type
+        const std::vector<Vec3i> f = {Vec3i(0, 1, 2)};
+        drawMesh3d(canvas, v, f, c, cam.K, cam.rvec, cam.tvec, s, noArray(), depth, ids);
+        int covered = 0;
+        for (int y = 0; y < 300; y++)
+            for (int x = 0; x < 150; x++) {
+                const int id = ids.at<int>(y, x);
+                ASSERT_TRUE(id == 0 || id == -1) << vis << " " << x << "," << y;
+                ASSERT_EQ(depth.at<float>(y, x),
+                          id == 0 ? 5.0f : std::numeric_limits<float>::infinity());
+                covered += id == 0;
+            }
+        EXPECT_NEAR(covered, 1800, 70) << vis;  // as DepthIsCameraZ: the same triangle
+    }
+}
+
 TEST(DrawMesh3d, PerspectiveCorrectNotAffine)
 {
     // A floor triangle y = 1 receding from Zc = 2 (A, B) to 8 (C); C alone is red. On the floor

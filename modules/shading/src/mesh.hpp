@@ -466,6 +466,9 @@ struct VertexColorShaders {
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&colors[vertex]); }
 
+    //! Called before a band's rows [y0, y1) are drawn: nothing to prepare.
+    void beginBand(int /*y0*/, int /*y1*/) const {}
+
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int /*face*/) const
     {
         const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
@@ -789,6 +792,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         // call gets several workers).
         for (int band; (band = schedule.next(range.start)) >= 0;) {
             const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
+            shaders.beginBand(y0, y1);
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
             uint64_t* order = binned.data() + bandStart[band];

@@ -14,9 +14,11 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace cv {
@@ -175,6 +177,19 @@ struct SurfaceShaders {
     const DepthTargets* targets;
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
+
+    //! Fills the band's rows of the outputs this call created (DepthTargets::fillDepth).
+    void beginBand(int y0, int y1) const
+    {
+        const size_t rowBytes = targets->width * sizeof(float);  // int ids: the same
+        for (int y = y0; y < y1; y++) {
+            if (targets->fillDepth)
+                std::fill_n(reinterpret_cast<float*>(targets->depth + size_t(y) * targets->depthStep),
+                            targets->width, std::numeric_limits<float>::infinity());
+            if (targets->fillIds)
+                std::memset(targets->ids + size_t(y) * targets->idsStep, 0xff, rowBytes);  // -1
+        }
+    }
 
     //! Deferred Phong (BandOptions::deferred): lights a row's kept (written) samples.
     void shadeKeptRow(T* row, int y, const int* kept, const float* weights,
@@ -670,15 +685,15 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
             depthBuffer.create(size, CV_32FC1);
             depth = depthBuffer.getMat();
         } else {
-            depth.create(size, CV_32FC1);
+            thread_local Mat kept;  // the z-buffer of calls without one: no new pages per call
+            kept.create(size, CV_32FC1);
+            depth = kept;
         }
-        depth.setTo(Scalar::all(std::numeric_limits<double>::infinity()));
     }
     Mat ids;
     if (faceIds.needed()) {
         faceIds.create(size, CV_32SC1);
         ids = faceIds.getMat();
-        ids.setTo(Scalar::all(-1));
     }
     timer.mark("outputs");
     DepthTargets targets;
@@ -686,6 +701,9 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     targets.depthStep = depth.empty() ? 0 : depth.step[0];
     targets.ids = ids.empty() ? nullptr : ids.data;
     targets.idsStep = ids.empty() ? 0 : ids.step[0];
+    targets.width = size.width;
+    targets.fillDepth = !depthGiven && !depth.empty();
+    targets.fillIds = !ids.empty();
     targets.lighting = &lighting;
     const Mat texels = textured ? textureInUnitsOf(tex, canvas.depth()) : Mat();
     if (canvas.depth() == CV_8U) {

@@ -254,6 +254,10 @@ struct DepthTargets {
     size_t depthStep = 0;
     uchar* ids = nullptr;    //!< CV_32SC1 rows; null: not written
     size_t idsStep = 0;
+    //! Outputs created by this call: each band first fills its rows (depth +inf, ids -1), in
+    //! parallel and while they are about to be used, instead of a serial pass before.
+    bool fillDepth = false, fillIds = false;
+    int width = 0;  //!< of the outputs' rows
     const Lighting* lighting = nullptr;
     //! Textured surfaces: the texture, in the canvas's units (the one of the canvas's type).
     const RemapSampler<uchar>* sampler8u = nullptr;
