@@ -678,6 +678,7 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     // Outputs: created only now that every argument passed.
     const bool zbuffer = settings.visibility == VISIBILITY_ZBUFFER;
     Mat depth;
+    thread_local Mat keptDepth;  // the z-buffer of calls without one: no new pages per call
     if (depthGiven) {
         depth = depthBuffer.getMat();
     } else if (depthBuffer.needed() || zbuffer) {
@@ -685,9 +686,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
             depthBuffer.create(size, CV_32FC1);
             depth = depthBuffer.getMat();
         } else {
-            thread_local Mat kept;  // the z-buffer of calls without one: no new pages per call
-            kept.create(size, CV_32FC1);
-            depth = kept;
+            keptDepth.create(size, CV_32FC1);
+            depth = keptDepth;
         }
     }
     Mat ids;
@@ -721,6 +721,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
         screen = ScreenMesh();
     if (in.verts.capacity() * sizeof(Vec3d) * 3 > MeshWorkspace::kKeepBytes)
         in = Mesh3dInput();
+    if (keptDepth.total() * sizeof(float) > MeshWorkspace::kKeepBytes)
+        keptDepth.release();
 }
 
 }  // namespace
