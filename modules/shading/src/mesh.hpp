@@ -83,7 +83,8 @@ inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& sc
         const uint32_t key = (uint32_t(items[i] >> 32) - lo) >> drop;
         items[i] = uint64_t(key) << 32 | uint32_t(items[i]);
         count[0][key & 0xff]++;
-        count[1][key >> 8]++;
+        if (keyBits > 8)  // one pass: no second byte to count
+            count[1][key >> 8]++;
     }
     scratch.resize(std::max(scratch.size(), n));
     uint64_t* src = items;

@@ -18,7 +18,6 @@
 #include <atomic>
 #include <climits>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace cv {
@@ -181,13 +180,13 @@ struct SurfaceShaders {
     //! Fills the band's rows of the outputs this call created (DepthTargets::fillDepth).
     void beginBand(int y0, int y1) const
     {
-        const size_t rowBytes = targets->width * sizeof(float);  // int ids: the same
+        const DepthTargets& out = *targets;
         for (int y = y0; y < y1; y++) {
-            if (targets->fillDepth)
-                std::fill_n(reinterpret_cast<float*>(targets->depth + size_t(y) * targets->depthStep),
-                            targets->width, std::numeric_limits<float>::infinity());
-            if (targets->fillIds)
-                std::memset(targets->ids + size_t(y) * targets->idsStep, 0xff, rowBytes);  // -1
+            if (out.fillDepth)
+                std::fill_n(Shader::template outputRow<float>(out.depth, out.depthStep, y),
+                            out.width, std::numeric_limits<float>::infinity());
+            if (out.fillIds)
+                std::fill_n(Shader::template outputRow<int>(out.ids, out.idsStep, y), out.width, -1);
         }
     }
 
