@@ -824,7 +824,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 for (int i = 0; i < count; i++) {
                     TriangleSetup triangle;
                     int vertexOrder[3];
-                    if (!setupTriangle<true>(points[i], size, triangle, vertexOrder))
+                    if (!setupBoxedTriangle(points[i], boxes[faces[i]], size, triangle, vertexOrder))
                         continue;
                     new (&batch[prepared++]) BatchFace{
                         triangle, shaders.make(triangle, vertexOrder, corners[i], faces[i]),

@@ -164,6 +164,8 @@ struct TriangleSetup {
     bool narrow;                   //!< walkers may use 64-bit arithmetic (see EdgeWalker)
     //! For a small triangle (see kSmallColumns), the first sample column of its box; else -1.
     int smallFirstColumn;
+    //! A small triangle's samples all lie within 4 columns from smallFirstColumn.
+    bool smallWithin4Columns;
 };
 
 /** Triangles at most this many sample columns wide and kSmallRows tall are walked by edge
@@ -217,16 +219,47 @@ inline bool triangleBox(const FixedPoint p[3], Size size, SampleBox& box)
     return box.rowBegin < box.rowEnd && box.colFirst <= box.colLast;
 }
 
+/** The rest of the setup, shared by setupTriangle and setupBoxedTriangle: p holds the vertices
+sorted top to bottom, xMin and xMax their extreme x. Rows are not set here. Returns false for
+zero area. */
+inline bool setupSorted(const FixedPoint p[3], int64_t xMin, int64_t xMax, bool narrow, Size size,
+                        TriangleSetup& t)
+{
+    t.narrow = narrow;
+    // Sign of the middle vertex against the long edge: < 0 puts it to the right.
+    int sign;
+    if (narrow) {
+        const int64_t cross = (p[2].x - p[0].x) * (p[1].y - p[0].y) -
+                              (p[2].y - p[0].y) * (p[1].x - p[0].x);
+        sign = (cross > 0) - (cross < 0);
+    } else {
+        const Int128 cross = Int128(p[2].x - p[0].x) * (p[1].y - p[0].y) -
+                             Int128(p[2].y - p[0].y) * (p[1].x - p[0].x);
+        sign = (cross > 0) - (cross < 0);
+    }
+    if (sign == 0)
+        return false;
+    t.top = p[0];
+    t.mid = p[1];
+    t.bottom = p[2];
+    t.longEdgeLeft = sign < 0;
+    // Extents below 8 and 16 pixels leave at most 8 sample columns and 16 rows.
+    const bool small = xMax - xMin < kSmallColumns * kSubpixelOne &&
+                       p[2].y - p[0].y < kSmallRows * kSubpixelOne;
+    t.smallFirstColumn = small ? firstColumnAt(xMin, size.width) : -1;
+    // A covered sample x has 256 x < xMax: a sample at the rightmost x lies on a right edge
+    // (the interior is to its left), which the top-left rule leaves out.
+    t.smallWithin4Columns = xMax <= (int64_t(t.smallFirstColumn) + 4) * kSubpixelOne;
+    return true;
+}
+
 /** Sets up the triangle with snapped vertices `in` for a target of `size` pixels. Returns false
 when it covers no sample of the target: an invalid vertex, zero area, or no overlap. `order`
 receives the input indices of top, middle and bottom vertex (sorted by y, then x): a canonical
-order, so everything derived from it is independent of the order the vertices were given in.
-kBoxChecked: triangleBox() accepted the triangle for this size, so its vertices are valid and it
-overlaps the target's columns (a mesh's faces, checked once when binned). */
-template <bool kBoxChecked = false>
+order, so everything derived from it is independent of the order the vertices were given in. */
 inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, int order[3])
 {
-    if (!kBoxChecked && !isValid(in))
+    if (!isValid(in))
         return false;
     FixedPoint p[3] = {in[0], in[1], in[2]};
     order[0] = 0, order[1] = 1, order[2] = 2;
@@ -241,41 +274,54 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
     sortPair(0, 1);
     const int64_t xMin = std::min({p[0].x, p[1].x, p[2].x});
     const int64_t xMax = std::max({p[0].x, p[1].x, p[2].x});
-    if (!kBoxChecked && (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne))
+    if (xMax < 0 || xMin > int64_t(size.width) * kSubpixelOne)
         return false;
     const int64_t extent = std::max({xMax, -xMin, p[2].y, -p[0].y});
     const int64_t canvasExtent = int64_t(std::max(size.width, size.height)) * kSubpixelOne;
-    t.narrow = extent < kNarrowLimit && canvasExtent < kNarrowLimit;
-    // Sign of the middle vertex against the long edge: < 0 puts it to the right.
-    int sign;
-    if (t.narrow) {
-        const int64_t cross = (p[2].x - p[0].x) * (p[1].y - p[0].y) -
-                              (p[2].y - p[0].y) * (p[1].x - p[0].x);
-        sign = (cross > 0) - (cross < 0);
-    } else {
-        const Int128 cross = Int128(p[2].x - p[0].x) * (p[1].y - p[0].y) -
-                             Int128(p[2].y - p[0].y) * (p[1].x - p[0].x);
-        sign = (cross > 0) - (cross < 0);
-    }
-    if (sign == 0)
+    if (!setupSorted(p, xMin, xMax, extent < kNarrowLimit && canvasExtent < kNarrowLimit, size, t))
         return false;
-    t.top = p[0];
-    t.mid = p[1];
-    t.bottom = p[2];
     t.rowBegin = ceilToPixel(p[0].y, size.height);
     t.rowMid = ceilToPixel(p[1].y, size.height);
     t.rowEnd = ceilToPixel(p[2].y, size.height);
-    t.longEdgeLeft = sign < 0;
-    // Extents below 8 and 16 pixels leave at most 8 sample columns and 16 rows.
-    const bool small = xMax - xMin < kSmallColumns * kSubpixelOne &&
-                       p[2].y - p[0].y < kSmallRows * kSubpixelOne;
-    t.smallFirstColumn = small ? firstColumnAt(xMin, size.width) : -1;
     return t.rowBegin < t.rowEnd;
+}
+
+/** setupTriangle for a mesh's face whose box triangleBox() gave (so its vertices are valid and
+it overlaps the target): the rows come from the box. Narrow faces (nearly all) are sorted
+without branches, on one 64-bit key per vertex: y, then x, then the input index, so that equal
+points keep their input order, as setupTriangle's stable sort does. */
+__attribute__((always_inline)) inline bool setupBoxedTriangle(const FixedPoint in[3], const SampleBox& box, Size size,
+                               TriangleSetup& t, int order[3])
+{
+    const int64_t xMin = std::min({in[0].x, in[1].x, in[2].x});
+    const int64_t xMax = std::max({in[0].x, in[1].x, in[2].x});
+    const int64_t yMin = std::min({in[0].y, in[1].y, in[2].y});
+    const int64_t yMax = std::max({in[0].y, in[1].y, in[2].y});
+    const int64_t extent = std::max({xMax, -xMin, yMax, -yMin});
+    const int64_t canvasExtent = int64_t(std::max(size.width, size.height)) * kSubpixelOne;
+    if (!(extent < kNarrowLimit && canvasExtent < kNarrowLimit))
+        return setupTriangle(in, size, t, order);
+    // |x|, |y| < 2^28: y + 2^28 and x + 2^28 take 29 bits each.
+    uint64_t key[3];
+    for (int i = 0; i < 3; i++)
+        key[i] = uint64_t(in[i].y + kNarrowLimit) << 33 | uint64_t(in[i].x + kNarrowLimit) << 2 |
+                 uint64_t(i);
+    const uint64_t a = std::min(key[0], key[1]), b = std::max(key[0], key[1]);
+    const uint64_t c = std::min(b, key[2]), last = std::max(b, key[2]);
+    const uint64_t first = std::min(a, c), middle = std::max(a, c);
+    order[0] = int(first & 3), order[1] = int(middle & 3), order[2] = int(last & 3);
+    const FixedPoint p[3] = {in[order[0]], in[order[1]], in[order[2]]};
+    if (!setupSorted(p, xMin, xMax, true, size, t))
+        return false;
+    t.rowBegin = box.rowBegin;
+    t.rowMid = ceilToPixel(p[1].y, size.height);
+    t.rowEnd = box.rowEnd;
+    return true;
 }
 
 /** walkTriangle for a small triangle (t.smallFirstColumn >= 0) over rows [begin, end): the
 same spans, found by testing the 8 samples of each row from the box's first column against the
-three edges.
+three edges (4 when the covered samples lie within 4 columns, as a grid's 4-pixel cells do).
 
 Edge a -> b (a above b) covers, as the EdgeWalker does, the samples right of or on it when it is
 a left edge (F >= 0, F(p) = (p - a) x (b - a) in subpixels) and those strictly left of it when
@@ -292,6 +338,7 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
     struct EdgeTest {
         v_int32x4 low, high, perRow;  // G at columns 0-3 and 4-7 of the row; its step per row
     };
+    const bool wide = !t.smallWithin4Columns;
     auto edgeTest = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
         const int64_t dx = b.x - a.x, dy = b.y - a.y;
         int32_t at0 = 1, perColumn = 0, perRow = 0;  // horizontal: always passes
@@ -312,17 +359,20 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
     const unsigned onCanvas = (1u << std::min(kSmallColumns, width - firstColumn)) - 1;
     const v_int32x4 zero = v_setzero_s32();
     for (int row = begin; row < end; row++) {
-        const unsigned inside =
-            (unsigned(v_signmask((e0.low > zero) & (e1.low > zero) & (e2.low > zero))) |
-             unsigned(v_signmask((e0.high > zero) & (e1.high > zero) & (e2.high > zero))) << 4) &
-            onCanvas;
+        unsigned inside =
+            unsigned(v_signmask((e0.low > zero) & (e1.low > zero) & (e2.low > zero)));
+        e0.low += e0.perRow, e1.low += e1.perRow, e2.low += e2.perRow;
+        if (wide) {  // the same for every row of the face: well predicted
+            inside |= unsigned(v_signmask((e0.high > zero) & (e1.high > zero) &
+                                          (e2.high > zero)))
+                      << 4;
+            e0.high += e0.perRow, e1.high += e1.perRow, e2.high += e2.perRow;
+        }
+        inside &= onCanvas;
         if (inside) {  // a convex shape: the covered samples are contiguous
             spanFn(row, firstColumn + __builtin_ctz(inside),
                    firstColumn + 32 - __builtin_clz(inside));
         }
-        e0.low += e0.perRow, e0.high += e0.perRow;
-        e1.low += e1.perRow, e1.high += e1.perRow;
-        e2.low += e2.perRow, e2.high += e2.perRow;
     }
 }
 
