@@ -31,6 +31,7 @@
 namespace cv {
 namespace shading {
 namespace detail {
+OPENCV_SHADING_ISA_BEGIN
 
 /** Maps a mean depth to 32 bits, linearly over [lo, hi] (the finite means' range), so that the
 map never decreases: equal depths share a key and a nearer depth never gets a larger one. Depths
@@ -390,6 +391,8 @@ private:
     std::vector<float> bound_;
 };
 
+OPENCV_SHADING_ISA_END
+
 /** A mesh as the band pass reads it: normalised and validated at the API edge. */
 struct MeshData {
     std::vector<Point2d> vertices;
@@ -407,6 +410,8 @@ struct MeshData {
                (depth.capacity() + faceDepth.capacity()) * sizeof(double);
     }
 };
+
+OPENCV_SHADING_ISA_BEGIN
 
 /** The per-face and per-vertex buffers of a mesh draw, kept by each calling thread between calls:
 fresh ones would be fresh pages, and their page faults cost more than drawing a small mesh. */
@@ -1046,6 +1051,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         work = MeshWorkspace();
 }
 
+OPENCV_SHADING_ISA_END
 }  // namespace detail
 }  // namespace shading
 }  // namespace cv

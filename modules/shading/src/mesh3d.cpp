@@ -9,7 +9,7 @@
 
 #include "camera.hpp"
 #include "input.hpp"
-#include "mesh.hpp"
+#include "bands.hpp"
 #include "shaders3d.hpp"
 
 #include <opencv2/core/utility.hpp>
@@ -142,149 +142,6 @@ void checkSettings(const RenderSettings& s)
         if (!isFinite(Vec3d(s.lights[i].position)) || !isFinite(s.lights[i].intensity))
             CV_Error(Error::StsOutOfRange,
                      format("settings.lights[%zu]: position and intensity must be finite", i));
-}
-
-/** The mesh as the band pass draws it: projected, clipped triangles, and per vertex 1 / Zc and
-the surface's attributes (interpolated perspective-correctly by SurfaceShader). */
-struct ScreenMesh {
-    MeshData mesh;                   //!< projected vertices and faces; faceDepth for painter's
-    std::vector<double> invZ;        //!< per vertex
-    std::vector<double> attributes;  //!< per vertex, `stride` values
-    Surface surface = Surface::kFlat;
-    int stride = 0;                  //!< attributeCount(surface)
-    std::vector<int> source;         //!< per face: its index in the caller's faces
-    std::vector<Vec6f> faceValues;   //!< per face: kFlat its colour (canvas units), kTexturedFaceLit its D, S
-
-    size_t capacityBytes() const
-    {
-        return mesh.capacityBytes() + (invZ.capacity() + attributes.capacity()) * sizeof(double) +
-               source.capacity() * sizeof(int) + faceValues.capacity() * sizeof(Vec6f);
-    }
-};
-
-template <typename T, Surface kSurface>
-void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
-                      const int* kept, const float* weights, const uint64_t* written, int width);
-
-/** The span shaders of the 3D path, built per face from the ScreenMesh. */
-template <typename T, Surface kSurface>
-struct SurfaceShaders {
-    using Shader = SurfaceShader<T, kSurface>;
-    static constexpr int kAttributes = attributeCount(kSurface);  //!< per ScreenMesh vertex
-    static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
-    const ScreenMesh* screen;
-    const DepthTargets* targets;
-
-    void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
-
-    //! Fills the band's rows of the outputs this call created (DepthTargets::fillDepth).
-    void beginBand(int y0, int y1) const
-    {
-        const DepthTargets& out = *targets;
-        for (int y = y0; y < y1; y++) {
-            if (out.fillDepth)
-                std::fill_n(Shader::template outputRow<float>(out.depth, out.depthStep, y),
-                            out.width, std::numeric_limits<float>::infinity());
-            if (out.fillIds)
-                std::fill_n(Shader::template outputRow<int>(out.ids, out.idsStep, y), out.width, -1);
-        }
-    }
-
-    //! Deferred Phong (BandOptions::deferred): lights a row's kept (written) samples.
-    void shadeKeptRow(T* row, int y, const int* kept, const float* weights,
-                      const uint64_t* written, int width) const
-    {
-        if constexpr (litPerSample(kSurface))
-            shadeKeptSamples<T, kSurface>(*screen, *targets, row, y, kept, weights, written,
-                                          width);
-    }
-
-    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
-    {
-        Shader s(t, targets, screen->source[face]);
-        for (int i = 0; i < 3; i++) {
-            const int v = f[order[i]];
-            s.invZ[i] = screen->invZ[v];
-            for (int k = 0; k < Shader::kAttributes; k++)  // none when lit per sample
-                s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
-        }
-        s.finishSetup(t);
-        for (int i = 0; i < 3; i++) {
-            if (order[i] == 1)
-                s.slotOf1 = i;
-            if (order[i] == 2)
-                s.slotOf2 = i;
-        }
-        if constexpr (kSurface == Surface::kFlat)
-            for (int k = 0; k < 3; k++)
-                s.color[k] = toChannel<T>(screen->faceValues[face][k]);
-        if constexpr (kSurface == Surface::kTexturedFaceLit)
-            for (int k = 0; k < 6; k++)
-                s.faceLight[k] = screen->faceValues[face][k];
-        return s;
-    }
-};
-
-/** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred), those whose
-bit is set in `written`: the kept face's vertex attributes weighted by the kept weights, lit a
-batch at a time. */
-template <typename T, Surface kSurface>
-void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
-                      const int* kept, const float* weights, const uint64_t* written, int width)
-{
-    int* const idRow =
-        targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
-    constexpr int n = attributeCount(kSurface);
-    constexpr int kPadded = (n + 3) & ~3;
-    int lastFace = -1;
-    LitBatch<T> pending;
-#if OPENCV_SHADING_SIMD128
-    v_float32x4 lanes[3][kPadded / 4];  // the kept face's vertex attributes, four a vector
-    for (auto& vertex : lanes)
-        for (v_float32x4& l : vertex)
-            l = v_setzero_f32();
-#else
-    float a[3][n] = {};  // the kept face's vertex attributes
-#endif
-    for (int word = 0; word < (width + 63) / 64; word++)
-        for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
-            const int x = word * 64 + __builtin_ctzll(bits);
-            const int face = kept[x];
-            if (idRow)
-                idRow[x] = screen.source[face];
-            if (face != lastFace) {
-                const Vec3i& f = screen.mesh.faces[face];
-                for (int i = 0; i < 3; i++) {
-                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
-#if OPENCV_SHADING_SIMD128
-                    // Each float as float(double) gives it; past n, zeros.
-                    auto pair = [&](int k) {
-                        return k + 2 <= n ? v_load(source + k)
-                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
-                    };
-                    for (int j = 0; j < kPadded / 4; j++)
-                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
-#else
-                    for (int k = 0; k < n; k++)
-                        a[i][k] = float(source[k]);
-#endif
-                }
-                lastFace = face;
-            }
-            const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
-            alignas(16) float v[kPadded];
-#if OPENCV_SHADING_SIMD128
-            // The scalar loop's operations, four attributes at a time.
-            const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
-            for (int j = 0; j < kPadded / 4; j++)
-                v_store_aligned(v + 4 * j, l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j]);
-#else
-            for (int k = 0; k < n; k++)
-                v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
-#endif
-            shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
-        }
-    pending.flush(*targets.lighting);
 }
 
 //! The inputs of drawMesh3d, checked and converted.
@@ -554,40 +411,6 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     });
 }
 
-template <typename T, Surface kSurface>
-void drawSurface(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets, bool zbuffer)
-{
-    const Vec<T, 3>* const noBackground = nullptr;
-    BandOptions options;
-    options.depthTested = zbuffer;
-    // Per-sample lighting costs more than the bookkeeping: shade each sample once.
-    options.deferred = options.frontToBack = litPerSample(kSurface);
-    drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, kSurface>{&screen, &targets},
-                    noBackground, options);
-}
-
-template <typename T>
-void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
-                    bool zbuffer)
-{
-    switch (screen.surface) {
-    case Surface::kFlat:
-        return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer);
-    case Surface::kGouraud:
-        return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer);
-    case Surface::kPhong:
-        return drawSurface<T, Surface::kPhong>(canvas, screen, targets, zbuffer);
-    case Surface::kTextured:
-        return drawSurface<T, Surface::kTextured>(canvas, screen, targets, zbuffer);
-    case Surface::kTexturedFaceLit:
-        return drawSurface<T, Surface::kTexturedFaceLit>(canvas, screen, targets, zbuffer);
-    case Surface::kTexturedVertexLit:
-        return drawSurface<T, Surface::kTexturedVertexLit>(canvas, screen, targets, zbuffer);
-    case Surface::kTexturedSampleLit:
-        return drawSurface<T, Surface::kTexturedSampleLit>(canvas, screen, targets, zbuffer);
-    }
-}
-
 }  // namespace
 
 void computeNormals(InputArray verts3d, InputArray faces, OutputArray vertexNormals,
@@ -709,12 +532,12 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
         const RemapSampler<uchar> sampler(texels, settings.textureInterpolation,
                                           settings.textureBorder);
         targets.sampler8u = &sampler;
-        drawScreenMesh<uchar>(canvas, screen, targets, zbuffer);
+        drawScreenMesh(canvas, screen, targets, zbuffer);
     } else {
         const RemapSampler<float> sampler(texels, settings.textureInterpolation,
                                           settings.textureBorder);
         targets.sampler32f = &sampler;
-        drawScreenMesh<float>(canvas, screen, targets, zbuffer);
+        drawScreenMesh(canvas, screen, targets, zbuffer);
     }
     if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
         screen = ScreenMesh();

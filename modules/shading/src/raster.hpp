@@ -6,6 +6,8 @@
 #ifndef OPENCV_SHADING_RASTER_HPP
 #define OPENCV_SHADING_RASTER_HPP
 
+#include "isa.hpp"
+
 #include <opencv2/core.hpp>
 #include <opencv2/core/hal/intrin.hpp>
 
@@ -24,6 +26,7 @@ and tests, so that both paths stay exact). */
 namespace cv {
 namespace shading {
 namespace detail {
+OPENCV_SHADING_ISA_BEGIN
 
 // GCC and Clang provide 128-bit integers; __extension__ keeps -Wpedantic quiet about it.
 __extension__ typedef __int128 Int128;
@@ -413,6 +416,7 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
     }
 }
 
+OPENCV_SHADING_ISA_END
 }  // namespace detail
 }  // namespace shading
 }  // namespace cv

@@ -18,6 +18,7 @@
 namespace cv {
 namespace shading {
 namespace detail {
+OPENCV_SHADING_ISA_BEGIN
 
 /** Samples per depth bound of the z-buffer's occlusion test, as a shift (8): the span shaders
 keep the bounds, ZBufferBlocks (mesh.hpp) tests faces against them. */
@@ -312,6 +313,7 @@ struct GouraudShader {
     }
 };
 
+OPENCV_SHADING_ISA_END
 }  // namespace detail
 }  // namespace shading
 }  // namespace cv

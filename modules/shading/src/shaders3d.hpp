@@ -189,6 +189,8 @@ inline Vec3d unitOrZero(const Vec3d& v)
     return length > 0 && std::isfinite(length) ? v * (1.0 / length) : Vec3d(0, 0, 0);
 }
 
+OPENCV_SHADING_ISA_BEGIN
+
 /** Samples waiting to be lit together (Phong): their pixels and interpolated position, normal
 and colour, lit a batch at a time in float lanes where SIMD is built, else one by one in double. */
 template <typename T>
@@ -248,6 +250,8 @@ struct LitBatch {
     }
 };
 
+OPENCV_SHADING_ISA_END
+
 /** What the 3D shaders write besides the canvas, and the lighting and texture they use. */
 struct DepthTargets {
     uchar* depth = nullptr;  //!< CV_32FC1 rows, canvas-sized; null: not written
@@ -298,6 +302,8 @@ constexpr bool litPerSample(Surface s)
 {
     return s == Surface::kPhong || s == Surface::kTexturedSampleLit;
 }
+
+OPENCV_SHADING_ISA_BEGIN
 
 /** Colours a sample from its interpolated attributes `a` (attributeCount(kSurface) values), or
 queues it in `pending` to be lit (litPerSample; null for the other surfaces). Not for kFlat or
@@ -485,6 +491,7 @@ struct SurfaceShader {
     }
 };
 
+OPENCV_SHADING_ISA_END
 }  // namespace detail
 }  // namespace shading
 }  // namespace cv

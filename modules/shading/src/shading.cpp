@@ -4,6 +4,7 @@
 // the one rasterization core (raster.hpp) with a span shader (shaders.hpp).
 #include <opencv2/shading.hpp>
 
+#include "bands.hpp"
 #include "input.hpp"
 #include "mesh.hpp"
 #include "raster.hpp"
@@ -83,22 +84,6 @@ void releaseIfBig(MeshData& mesh)
         mesh = MeshData();
 }
 
-//! Draws the mesh; with `background`, also sets every pixel no face covers (render()).
-template <typename T>
-void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* background)
-{
-    Vec<T, 3> bg;
-    if (background)
-        for (int k = 0; k < 3; k++)
-            bg[k] = saturate_cast<T>((*background)[k]);
-    const Vec<T, 3>* fill = background ? &bg : nullptr;
-    if (shadeType == SHADE_FLAT)
-        drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
-    else
-        drawMeshInBands(canvas, mesh, VertexColorShaders<GouraudShader<T>>{mesh.colors.data()},
-                        fill);
-}
-
 }  // namespace
 
 void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces, InputArray vcolors,
@@ -107,10 +92,7 @@ void drawMesh(InputOutputArray canvas, InputArray verts2d, InputArray faces, Inp
     checkCanvas(canvas, "canvas");
     MeshData& mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     Mat img = canvas.getMat();
-    if (img.depth() == CV_8U)
-        drawMeshAs<uchar>(img, mesh, shadeType, nullptr);
-    else
-        drawMeshAs<float>(img, mesh, shadeType, nullptr);
+    drawVertexColorMesh(img, mesh, shadeType, nullptr);
     releaseIfBig(mesh);
 }
 
@@ -123,7 +105,7 @@ void render(InputArray verts2d, InputArray faces, InputArray vcolors, InputArray
     MeshData& mesh = readMesh(verts2d, faces, vcolors, depth, shadeType);
     img.create(size, CV_32FC3);
     Mat canvas = img.getMat();
-    drawMeshAs<float>(canvas, mesh, shadeType, &background);  // also fills the background
+    drawVertexColorMesh(canvas, mesh, shadeType, &background);  // also fills the background
     releaseIfBig(mesh);
 }
 

@@ -1,0 +1,276 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// The band pass's entry points (bands.hpp): the mesh engine (mesh.hpp) with the span shaders of
+// the 2D functions and of drawMesh3d. bands_avx2.cpp compiles this file again for AVX2, in its
+// own namespaces; the choice between the builds is made here, in the baseline build.
+#include <opencv2/shading.hpp>
+
+#include "bands.hpp"
+#include "mesh.hpp"
+#include "screen_mesh.hpp"
+#include "shaders.hpp"
+#include "shaders3d.hpp"
+
+#include <opencv2/core/utility.hpp>
+
+#include <atomic>
+#include <limits>
+
+#ifndef OPENCV_SHADING_BANDS_NAMESPACE
+#define OPENCV_SHADING_BANDS_NAMESPACE bands_baseline
+#endif
+
+namespace cv {
+namespace shading {
+namespace detail {
+OPENCV_SHADING_ISA_BEGIN
+namespace {
+
+//! Draws the mesh; with `background`, also sets every pixel no face covers (render()).
+template <typename T>
+void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* background)
+{
+    Vec<T, 3> bg;
+    if (background)
+        for (int k = 0; k < 3; k++)
+            bg[k] = saturate_cast<T>((*background)[k]);
+    const Vec<T, 3>* fill = background ? &bg : nullptr;
+    if (shadeType == SHADE_FLAT)
+        drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
+    else
+        drawMeshInBands(canvas, mesh, VertexColorShaders<GouraudShader<T>>{mesh.colors.data()},
+                        fill);
+}
+
+template <typename T, Surface kSurface>
+void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
+                      const int* kept, const float* weights, const uint64_t* written, int width);
+
+/** The span shaders of the 3D path, built per face from the ScreenMesh. */
+template <typename T, Surface kSurface>
+struct SurfaceShaders {
+    using Shader = SurfaceShader<T, kSurface>;
+    static constexpr int kAttributes = attributeCount(kSurface);  //!< per ScreenMesh vertex
+    static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
+    const ScreenMesh* screen;
+    const DepthTargets* targets;
+
+    void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
+
+    //! Fills the band's rows of the outputs this call created (DepthTargets::fillDepth).
+    void beginBand(int y0, int y1) const
+    {
+        const DepthTargets& out = *targets;
+        for (int y = y0; y < y1; y++) {
+            if (out.fillDepth)
+                std::fill_n(Shader::template outputRow<float>(out.depth, out.depthStep, y),
+                            out.width, std::numeric_limits<float>::infinity());
+            if (out.fillIds)
+                std::fill_n(Shader::template outputRow<int>(out.ids, out.idsStep, y), out.width, -1);
+        }
+    }
+
+    //! Deferred Phong (BandOptions::deferred): lights a row's kept (written) samples.
+    void shadeKeptRow(T* row, int y, const int* kept, const float* weights,
+                      const uint64_t* written, int width) const
+    {
+        if constexpr (litPerSample(kSurface))
+            shadeKeptSamples<T, kSurface>(*screen, *targets, row, y, kept, weights, written,
+                                          width);
+    }
+
+    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
+    {
+        Shader s(t, targets, screen->source[face]);
+        for (int i = 0; i < 3; i++) {
+            const int v = f[order[i]];
+            s.invZ[i] = screen->invZ[v];
+            for (int k = 0; k < Shader::kAttributes; k++)  // none when lit per sample
+                s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
+        }
+        s.finishSetup(t);
+        for (int i = 0; i < 3; i++) {
+            if (order[i] == 1)
+                s.slotOf1 = i;
+            if (order[i] == 2)
+                s.slotOf2 = i;
+        }
+        if constexpr (kSurface == Surface::kFlat)
+            for (int k = 0; k < 3; k++)
+                s.color[k] = toChannel<T>(screen->faceValues[face][k]);
+        if constexpr (kSurface == Surface::kTexturedFaceLit)
+            for (int k = 0; k < 6; k++)
+                s.faceLight[k] = screen->faceValues[face][k];
+        return s;
+    }
+};
+
+/** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred), those whose
+bit is set in `written`: the kept face's vertex attributes weighted by the kept weights, lit a
+batch at a time. */
+template <typename T, Surface kSurface>
+void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
+                      const int* kept, const float* weights, const uint64_t* written, int width)
+{
+    int* const idRow =
+        targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
+    constexpr int n = attributeCount(kSurface);
+    constexpr int kPadded = (n + 3) & ~3;
+    int lastFace = -1;
+    LitBatch<T> pending;
+#if OPENCV_SHADING_SIMD128
+    v_float32x4 lanes[3][kPadded / 4];  // the kept face's vertex attributes, four a vector
+    for (auto& vertex : lanes)
+        for (v_float32x4& l : vertex)
+            l = v_setzero_f32();
+#else
+    float a[3][n] = {};  // the kept face's vertex attributes
+#endif
+    for (int word = 0; word < (width + 63) / 64; word++)
+        for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
+            const int x = word * 64 + __builtin_ctzll(bits);
+            const int face = kept[x];
+            if (idRow)
+                idRow[x] = screen.source[face];
+            if (face != lastFace) {
+                const Vec3i& f = screen.mesh.faces[face];
+                for (int i = 0; i < 3; i++) {
+                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
+#if OPENCV_SHADING_SIMD128
+                    // Each float as float(double) gives it; past n, zeros.
+                    auto pair = [&](int k) {
+                        return k + 2 <= n ? v_load(source + k)
+                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
+                    };
+                    for (int j = 0; j < kPadded / 4; j++)
+                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+#else
+                    for (int k = 0; k < n; k++)
+                        a[i][k] = float(source[k]);
+#endif
+                }
+                lastFace = face;
+            }
+            const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
+            alignas(16) float v[kPadded];
+#if OPENCV_SHADING_SIMD128
+            // The scalar loop's operations, four attributes at a time.
+            const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
+            for (int j = 0; j < kPadded / 4; j++)
+                v_store_aligned(v + 4 * j, l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j]);
+#else
+            for (int k = 0; k < n; k++)
+                v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
+#endif
+            shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
+        }
+    pending.flush(*targets.lighting);
+}
+
+template <typename T, Surface kSurface>
+void drawSurface(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets, bool zbuffer)
+{
+    const Vec<T, 3>* const noBackground = nullptr;
+    BandOptions options;
+    options.depthTested = zbuffer;
+    // Per-sample lighting costs more than the bookkeeping: shade each sample once.
+    options.deferred = options.frontToBack = litPerSample(kSurface);
+    drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, kSurface>{&screen, &targets},
+                    noBackground, options);
+}
+
+template <typename T>
+void drawScreenMeshAs(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
+                      bool zbuffer)
+{
+    switch (screen.surface) {
+    case Surface::kFlat:
+        return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer);
+    case Surface::kGouraud:
+        return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer);
+    case Surface::kPhong:
+        return drawSurface<T, Surface::kPhong>(canvas, screen, targets, zbuffer);
+    case Surface::kTextured:
+        return drawSurface<T, Surface::kTextured>(canvas, screen, targets, zbuffer);
+    case Surface::kTexturedFaceLit:
+        return drawSurface<T, Surface::kTexturedFaceLit>(canvas, screen, targets, zbuffer);
+    case Surface::kTexturedVertexLit:
+        return drawSurface<T, Surface::kTexturedVertexLit>(canvas, screen, targets, zbuffer);
+    case Surface::kTexturedSampleLit:
+        return drawSurface<T, Surface::kTexturedSampleLit>(canvas, screen, targets, zbuffer);
+    }
+}
+
+}  // namespace
+OPENCV_SHADING_ISA_END
+
+namespace OPENCV_SHADING_BANDS_NAMESPACE {
+
+void drawVertexColorMesh(Mat& canvas, const MeshData& mesh, int shadeType,
+                         const Scalar* background)
+{
+    if (canvas.depth() == CV_8U)
+        drawMeshAs<uchar>(canvas, mesh, shadeType, background);
+    else
+        drawMeshAs<float>(canvas, mesh, shadeType, background);
+}
+
+void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
+                    bool zbuffer)
+{
+    if (canvas.depth() == CV_8U)
+        drawScreenMeshAs<uchar>(canvas, screen, targets, zbuffer);
+    else
+        drawScreenMeshAs<float>(canvas, screen, targets, zbuffer);
+}
+
+}  // namespace OPENCV_SHADING_BANDS_NAMESPACE
+
+#ifndef OPENCV_SHADING_BANDS_AVX2_BUILD
+namespace {
+
+//! Whether the AVX2 build is there and the CPU runs it (asked once).
+bool avx2Available()
+{
+#if OPENCV_SHADING_HAVE_AVX2
+    static const bool available = checkHardwareSupport(CPU_AVX2);
+    return available;
+#else
+    return false;
+#endif
+}
+
+std::atomic<bool> useAvx2{avx2Available()};
+
+}  // namespace
+
+KernelBuild useBandBuild(KernelBuild build)
+{
+    useAvx2 = build == KernelBuild::kAvx2 && avx2Available();
+    return useAvx2 ? KernelBuild::kAvx2 : KernelBuild::kBaseline;
+}
+
+void drawVertexColorMesh(Mat& canvas, const MeshData& mesh, int shadeType,
+                         const Scalar* background)
+{
+#if OPENCV_SHADING_HAVE_AVX2
+    if (useAvx2.load(std::memory_order_relaxed))
+        return bands_avx2::drawVertexColorMesh(canvas, mesh, shadeType, background);
+#endif
+    bands_baseline::drawVertexColorMesh(canvas, mesh, shadeType, background);
+}
+
+void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
+                    bool zbuffer)
+{
+#if OPENCV_SHADING_HAVE_AVX2
+    if (useAvx2.load(std::memory_order_relaxed))
+        return bands_avx2::drawScreenMesh(canvas, screen, targets, zbuffer);
+#endif
+    bands_baseline::drawScreenMesh(canvas, screen, targets, zbuffer);
+}
+#endif  // OPENCV_SHADING_BANDS_AVX2_BUILD
+
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv

@@ -1,0 +1,20 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// The band pass (the rasterizer, its span shaders and the mesh engine) is compiled once per
+// instruction set: bands.cpp for the baseline, bands_avx2.cpp for AVX2, chosen at run time
+// (bands.hpp). Its code lives in an inline namespace named after the set, so that the two builds
+// never share a function: without it the linker would keep one copy of each inline function and
+// template, and the AVX2 build would run baseline code (or the baseline AVX2 code, on a CPU
+// without it). The types the builds hand each other (MeshData, ScreenMesh, DepthTargets,
+// Lighting, the texture samplers) stay outside it.
+#ifndef OPENCV_SHADING_ISA_HPP
+#define OPENCV_SHADING_ISA_HPP
+
+#ifndef OPENCV_SHADING_ISA
+#define OPENCV_SHADING_ISA isa_baseline
+#endif
+
+#define OPENCV_SHADING_ISA_BEGIN inline namespace OPENCV_SHADING_ISA {
+#define OPENCV_SHADING_ISA_END }
+
+#endif  // OPENCV_SHADING_ISA_HPP

@@ -1,0 +1,40 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// The projected mesh drawMesh3d hands to the band pass (bands.hpp).
+#ifndef OPENCV_SHADING_SCREEN_MESH_HPP
+#define OPENCV_SHADING_SCREEN_MESH_HPP
+
+#include "mesh.hpp"
+#include "shaders3d.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace cv {
+namespace shading {
+namespace detail {
+
+/** The mesh as the band pass draws it: projected, clipped triangles, and per vertex 1 / Zc and
+the surface's attributes (interpolated perspective-correctly by SurfaceShader). */
+struct ScreenMesh {
+    MeshData mesh;                   //!< projected vertices and faces; faceDepth for painter's
+    std::vector<double> invZ;        //!< per vertex
+    std::vector<double> attributes;  //!< per vertex, `stride` values
+    Surface surface = Surface::kFlat;
+    int stride = 0;                  //!< attributeCount(surface)
+    std::vector<int> source;         //!< per face: its index in the caller's faces
+    std::vector<Vec6f> faceValues;   //!< per face: kFlat its colour (canvas units), kTexturedFaceLit its D, S
+
+    size_t capacityBytes() const
+    {
+        return mesh.capacityBytes() + (invZ.capacity() + attributes.capacity()) * sizeof(double) +
+               source.capacity() * sizeof(int) + faceValues.capacity() * sizeof(Vec6f);
+    }
+};
+
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv
+
+#endif  // OPENCV_SHADING_SCREEN_MESH_HPP

@@ -1,0 +1,122 @@
+// The band pass is built for the baseline instruction set and for AVX2 (bands.hpp): both builds
+// draw the same images, depth and id maps bit for bit, on the benchmark scenes (2D and 3D, every
+// shading and visibility, textured or not, float and 8-bit canvases).
+#include "../modules/shading/perf/perf_scenes.hpp"
+#include "../modules/shading/src/bands.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/shading.hpp>
+
+#include <functional>
+#include <string>
+
+using namespace cv;
+using cv::shading::detail::KernelBuild;
+using cv::shading::detail::useBandBuild;
+
+namespace {
+
+//! Bytes of `a` and `b` that differ (0 when equal; sizes and types must match).
+size_t differingBytes(const Mat& a, const Mat& b)
+{
+    if (a.size() != b.size() || a.type() != b.type())
+        return size_t(-1);
+    size_t n = 0;
+    for (int y = 0; y < a.rows; y++)
+        for (size_t i = 0; i < a.cols * a.elemSize(); i++)
+            n += a.ptr<uchar>(y)[i] != b.ptr<uchar>(y)[i];
+    return n;
+}
+
+//! Draws with each build (outputs: canvas, then any depth or ids maps) and compares them.
+void expectBuildsAgree(const std::function<std::vector<Mat>()>& draw, const std::string& what)
+{
+    ASSERT_EQ(useBandBuild(KernelBuild::kBaseline), KernelBuild::kBaseline);
+    const std::vector<Mat> base = draw();
+    const bool avx2 = useBandBuild(KernelBuild::kAvx2) == KernelBuild::kAvx2;
+    if (!avx2)
+        GTEST_SKIP() << "no AVX2 build, or a CPU without AVX2";
+    const std::vector<Mat> other = draw();
+    ASSERT_EQ(base.size(), other.size());
+    // Something was drawn: the canvas started uniform.
+    Mat gray;
+    base[0].reshape(1).convertTo(gray, CV_64F);
+    double lo, hi;
+    minMaxLoc(gray, &lo, &hi);
+    EXPECT_LT(lo, hi) << what;
+    for (size_t i = 0; i < base.size(); i++)
+        EXPECT_EQ(differingBytes(base[i], other[i]), 0u) << what << ", output " << i;
+}
+
+class BandBuilds : public testing::Test {
+protected:
+    void TearDown() override { useBandBuild(KernelBuild::kAvx2); }  // the best the CPU runs
+};
+
+TEST_F(BandBuilds, Scenes2dAgreeBitForBit)
+{
+    for (const char* kind : {"grid", "sphere", "random", "demo"}) {
+        const shading_perf::Scene scene = shading_perf::makeScene(kind, 256);
+        const auto& m = scene.mesh;
+        for (int shade : {shading::SHADE_FLAT, shading::SHADE_GOURAUD}) {
+            expectBuildsAgree(
+                [&] {
+                    Mat img;
+                    shading::render(m.verts2d, m.faces, m.vcolors, m.depth, img, shade,
+                                    Size(256, 256), Scalar(0.1, 0.2, 0.3));
+                    return std::vector<Mat>{img};
+                },
+                std::string(kind) + " render, shade " + std::to_string(shade));
+            expectBuildsAgree(
+                [&] {
+                    Mat colors, img(256, 256, CV_8UC3, Scalar(1, 2, 3));
+                    m.vcolors.convertTo(colors, CV_32F, 255.0);
+                    shading::drawMesh(img, m.verts2d, m.faces, colors, m.depth, shade);
+                    return std::vector<Mat>{img};
+                },
+                std::string(kind) + " 8-bit drawMesh, shade " + std::to_string(shade));
+        }
+    }
+}
+
+TEST_F(BandBuilds, Scenes3dAgreeBitForBit)
+{
+    const shading_perf::Scene3d sc = shading_perf::makeScene3d("knot3d", 256);
+    const shading_perf::TexturedScene3d ts = shading_perf::makeTexturedScene3d("knot3d", 256);
+    for (int shade : {shading::SHADE_FLAT, shading::SHADE_GOURAUD, shading::SHADE_PHONG})
+        for (int vis : {shading::VISIBILITY_ZBUFFER, shading::VISIBILITY_PAINTER})
+            for (int type : {CV_32FC3, CV_8UC3}) {
+                shading::RenderSettings s = sc.settings;
+                s.shadeType = shade;
+                s.visibility = vis;
+                const double unit = type == CV_8UC3 ? 255.0 : 1.0;
+                const std::string what = "knot, shade " + std::to_string(shade) + ", visibility " +
+                                         std::to_string(vis) + ", type " + std::to_string(type);
+                expectBuildsAgree(
+                    [&] {
+                        Mat canvas(sc.size, type, Scalar::all(0.5 * unit)), depth, ids, colors;
+                        sc.mesh.vcolors.convertTo(colors, CV_32F, unit);
+                        shading::drawMesh3d(canvas, sc.mesh.verts3d, sc.mesh.faces, colors,
+                                            sc.cameraMatrix, sc.rvec, sc.tvec, s,
+                                            sc.mesh.normals, depth, ids);
+                        return std::vector<Mat>{canvas, depth, ids};
+                    },
+                    what);
+                s.textureBorder = BORDER_WRAP;  // the coordinates run past the texture
+                expectBuildsAgree(
+                    [&] {
+                        Mat canvas(sc.size, type, Scalar::all(0.5 * unit)), depth, ids;
+                        const auto& m = ts.scene.mesh;
+                        shading::drawTexturedMesh3d(
+                            canvas, m.verts3d, m.faces, ts.texCoords,
+                            type == CV_8UC3 ? ts.texture8u : ts.texture32f,
+                            ts.scene.cameraMatrix, ts.scene.rvec, ts.scene.tvec, s, m.normals,
+                            depth, ids);
+                        return std::vector<Mat>{canvas, depth, ids};
+                    },
+                    "textured " + what);
+            }
+}
+
+}  // namespace
