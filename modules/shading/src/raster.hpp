@@ -338,28 +338,60 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
 {
     const int firstColumn = t.smallFirstColumn;
     const int64_t ox = int64_t(firstColumn) * kSubpixelOne, oy = int64_t(begin) * kSubpixelOne;
-    struct EdgeTest {
-        v_int32x4 low, high, perRow;  // G at columns 0-3 and 4-7 of the row; its step per row
-    };
-    const bool wide = !t.smallWithin4Columns;
-    auto edgeTest = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
+    // G at column 0 of the first row, and its steps per column and per row.
+    auto edgeAt = [&](const FixedPoint& a, const FixedPoint& b, bool left, int32_t& at0,
+                      int32_t& perColumn, int32_t& perRow) {
         const int64_t dx = b.x - a.x, dy = b.y - a.y;
-        int32_t at0 = 1, perColumn = 0, perRow = 0;  // horizontal: always passes
+        at0 = 1, perColumn = 0, perRow = 0;  // horizontal: always passes
         if (dy != 0) {
             const int64_t s = left ? 1 : -1;
             at0 = int32_t(s * ((ox - a.x) * dy - (oy - a.y) * dx) + (left ? 1 : 0));
             perColumn = int32_t(s * dy * kSubpixelOne);
             perRow = int32_t(-s * dx * kSubpixelOne);
         }
+    };
+    const bool longLeft = t.longEdgeLeft;
+    // Columns at or past the canvas's right edge are not tested.
+    const unsigned onCanvas = (1u << std::min(kSmallColumns, width - firstColumn)) - 1;
+#if CV_SIMD256
+    // The AVX2 build (bands_avx2.cpp): the 8 columns in one vector.
+    struct EdgeTest8 {
+        v_int32x8 at, perRow;
+    };
+    const v_int32x8 columns(0, 1, 2, 3, 4, 5, 6, 7);
+    auto edgeTest8 = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
+        int32_t at0, perColumn, perRow;
+        edgeAt(a, b, left, at0, perColumn, perRow);
+        return EdgeTest8{v256_setall_s32(at0) + v256_setall_s32(perColumn) * columns,
+                         v256_setall_s32(perRow)};
+    };
+    EdgeTest8 f0 = edgeTest8(t.top, t.bottom, longLeft);
+    EdgeTest8 f1 = edgeTest8(t.top, t.mid, !longLeft);
+    EdgeTest8 f2 = edgeTest8(t.mid, t.bottom, !longLeft);
+    const v_int32x8 zero8 = v256_setzero_s32();
+    for (int row = begin; row < end; row++) {
+        const unsigned inside =
+            unsigned(v_signmask((f0.at > zero8) & (f1.at > zero8) & (f2.at > zero8))) & onCanvas;
+        f0.at += f0.perRow, f1.at += f1.perRow, f2.at += f2.perRow;
+        if (inside) {  // a convex shape: the covered samples are contiguous
+            spanFn(row, firstColumn + __builtin_ctz(inside),
+                   firstColumn + 32 - __builtin_clz(inside));
+        }
+    }
+#else
+    struct EdgeTest {
+        v_int32x4 low, high, perRow;  // G at columns 0-3 and 4-7 of the row; its step per row
+    };
+    const bool wide = !t.smallWithin4Columns;
+    auto edgeTest = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
+        int32_t at0, perColumn, perRow;
+        edgeAt(a, b, left, at0, perColumn, perRow);
         const v_int32x4 low(at0, at0 + perColumn, at0 + 2 * perColumn, at0 + 3 * perColumn);
         return EdgeTest{low, low + v_setall_s32(4 * perColumn), v_setall_s32(perRow)};
     };
-    const bool longLeft = t.longEdgeLeft;
     EdgeTest e0 = edgeTest(t.top, t.bottom, longLeft);
     EdgeTest e1 = edgeTest(t.top, t.mid, !longLeft);
     EdgeTest e2 = edgeTest(t.mid, t.bottom, !longLeft);
-    // Columns at or past the canvas's right edge are not tested.
-    const unsigned onCanvas = (1u << std::min(kSmallColumns, width - firstColumn)) - 1;
     const v_int32x4 zero = v_setzero_s32();
     for (int row = begin; row < end; row++) {
         unsigned inside =
@@ -377,6 +409,7 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
                    firstColumn + 32 - __builtin_clz(inside));
         }
     }
+#endif
 }
 
 /** Calls spanFn(row, xBegin, xEnd) for every non-empty span of t within rows
