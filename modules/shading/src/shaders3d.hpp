@@ -461,9 +461,9 @@ struct SurfaceShader {
     /** Z-buffer (BandOptions::depthTested): takes the span's samples where (depth, face) is
     smaller than what the sample keeps (its bit in `covered` clear: the buffer's own value,
     depth only), so the faces may come in any order. A taken sample gets its depth, its face in
-    `kept`, the block bookkeeping of ZBufferBlocks, and its colour and id, or with `keptWeights`
-    (deferred) the perspective-correct weights of the face's own vertices 1 and 2 for shading
-    later. */
+    `kept`, the block bookkeeping of ZBufferBlocks, and its colour and id, or for surfaces lit
+    per sample (always drawn deferred, into `keptWeights`) the perspective-correct weights of the
+    face's own vertices 1 and 2 for shading later. */
     void depthTest(const TriangleSetup& t, T* row, int y, int xBegin, int xEnd, int face,
                    int* kept, float* keptWeights, uint64_t* covered, float* bound) const
     {
@@ -479,14 +479,13 @@ struct SurfaceShader {
             kept[x] = face;
             covered[x >> 6] |= uint64_t(1) << (x & 63);
             bound[x >> kDepthBoundShift] = std::max(bound[x >> kDepthBoundShift], depth);
-            if (keptWeights) {
+            if constexpr (litPerSample(kSurface)) {  // always deferred
                 keepWeights(x, q, inv, keptWeights);
-                return;
-            }
-            if (idRow)
-                idRow[x] = faceId;
-            if constexpr (!litPerSample(kSurface))
+            } else {
+                if (idRow)
+                    idRow[x] = faceId;
                 shadeSample(row + 3 * x, q, inv);
+            }
         });
     }
 };
