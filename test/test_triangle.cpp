@@ -298,3 +298,27 @@ TEST(ShadingTriangle, GouraudHugeColourInAnyChannelNeverNaN)
             }
         }
 }
+
+// A mesh checks its colours' range once per draw (no face then checks its own): a huge colour at
+// one vertex still sends the faces that use it down the per-pixel path, and the mesh draws what
+// gouraud() draws face by face (no NaN; the other faces stepped as usual).
+TEST(ShadingTriangle, MeshWithOneHugeColourEqualsFaceByFace)
+{
+    const std::vector<Point2d> verts = {{1, 1}, {20, 2}, {3, 22}, {22, 21}, {12, 30}};
+    const std::vector<Vec3i> faces = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}};  // no overlap
+    for (int vertex = 0; vertex < 5; vertex++) {
+        std::vector<Vec3d> colors = {
+            {0.1, 0.2, 0.3}, {0.9, 0.1, 0.4}, {0.3, 0.8, 0.2}, {0.5, 0.5, 0.9}, {0.7, 0.3, 0.1}};
+        colors[vertex][vertex % 3] = -2.7753559049153819e+40;
+        Mat mesh(32, 24, CV_32FC3, Scalar::all(0)), byFace = mesh.clone();
+        shading::drawMesh(mesh, verts, faces, colors, noArray(), shading::SHADE_GOURAUD);
+        for (const Vec3i& f : faces)
+            shading::gouraud(byFace, std::vector<Point2d>{verts[f[0]], verts[f[1]], verts[f[2]]},
+                             std::vector<Vec3d>{colors[f[0]], colors[f[1]], colors[f[2]]});
+        EXPECT_EQ(cv::norm(mesh, byFace, NORM_INF), 0) << "huge colour at vertex " << vertex;
+        for (int y = 0; y < mesh.rows; y++)
+            for (int x = 0; x < mesh.cols; x++)
+                for (int k = 0; k < 3; k++)
+                    ASSERT_FALSE(std::isnan(mesh.at<Vec3f>(y, x)[k])) << x << "," << y;
+    }
+}

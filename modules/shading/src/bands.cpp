@@ -35,11 +35,15 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
         for (int k = 0; k < 3; k++)
             bg[k] = saturate_cast<T>((*background)[k]);
     const Vec<T, 3>* fill = background ? &bg : nullptr;
-    if (shadeType == SHADE_FLAT)
+    if (shadeType == SHADE_FLAT) {
         drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
-    else
-        drawMeshInBands(canvas, mesh, VertexColorShaders<GouraudShader<T>>{mesh.colors.data()},
-                        fill);
+        return;
+    }
+    bool inRange = true;  // then no face checks its colours
+    for (const Vec3d& c : mesh.colors)
+        inRange &= gouraudInRange(c[0]) & gouraudInRange(c[1]) & gouraudInRange(c[2]);
+    drawMeshInBands(canvas, mesh,
+                    VertexColorShaders<GouraudShader<T>>{mesh.colors.data(), inRange}, fill);
 }
 
 template <typename T, Surface kSurface>

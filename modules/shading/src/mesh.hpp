@@ -469,6 +469,8 @@ struct VertexColorShaders {
     using Shader = ShaderType;
     static constexpr bool kZBuffer = false;  //!< no depth-tested drawing (see ZBufferBlocks)
     const Vec3d* colors;  //!< one per vertex
+    //! Every colour is within the Gouraud shader's range (gouraudInRange), checked once.
+    bool colorsInRange = false;
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&colors[vertex]); }
 
@@ -478,7 +480,7 @@ struct VertexColorShaders {
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int /*face*/) const
     {
         const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
-        return Shader(t, order, c);
+        return Shader(t, order, c, colorsInRange);
     }
 };
 

@@ -107,7 +107,7 @@ template <typename T>
 struct FlatShader {
     T color[4];  //!< the colour; for float rows a copy of its first channel in the fourth lane
 
-    FlatShader(const TriangleSetup&, const int*, const Vec3d* const c[3])
+    FlatShader(const TriangleSetup&, const int*, const Vec3d* const c[3], bool = false)
     {
         for (int k = 0; k < 3; k++)
             color[k] = toChannel<T>(float(((*c[0])[k] + (*c[1])[k] + (*c[2])[k]) / 3.0));
@@ -203,6 +203,13 @@ struct ExactWeights {
     }
 };
 
+/** Whether a colour value is within +-1e37 (so not NaN): Gouraud colours beyond that are
+computed per pixel, where stepping in float could overflow. */
+inline bool gouraudInRange(double v)
+{
+    return std::abs(v) <= 1e37;
+}
+
 /** Gouraud shading: the affine function of (x, y) through the three (snapped) vertices and their
 colours, which is what interpolating along the edges and then along the span gives.
 
@@ -218,29 +225,19 @@ struct GouraudShader {
     //! A colour beyond +-1e37 (or not finite): values are computed per pixel, not stepped.
     bool perPixel;
 
-    GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3])
+    /** `colorsInRange`: the caller checked that every colour is within +-1e37 (a mesh's, once
+    per draw), so this face need not. */
+    GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3],
+                  bool colorsInRange = false)
         : weights(t)
     {
-#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
-        // Two channels at a time; a NaN fails the comparison too.
-        const v_float64x2 limit = v_setall_f64(1e37);
-        v_float64x2 inRange = v_setall_f64(0.0) == v_setall_f64(0.0);
-        for (int i = 0; i < 3; i++) {
-            const v_float64x2 low = v_load(c[order[i]]->val);
-            const v_float64x2 high = v_setall_f64((*c[order[i]])[2]);
-            v_store(color[i], low);
-            color[i][2] = (*c[order[i]])[2];
-            inRange = inRange & (v_abs(low) <= limit) & (v_abs(high) <= limit);
-        }
-        perPixel = !v_check_all(inRange);
-#else
-        perPixel = false;
+        bool inRange = true;
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < 3; k++) {
                 color[i][k] = (*c[order[i]])[k];
-                perPixel |= !(std::abs(color[i][k]) <= 1e37);
+                inRange &= colorsInRange || gouraudInRange(color[i][k]);
             }
-#endif
+        perPixel = !inRange;
         double dw[3];
         weights.stepX(t, dw);
         // Clamped to float's range: an infinite step would turn the span's first pixel (step * 0)
