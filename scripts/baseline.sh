@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The test suite again with the AVX2 kernels switched off at run time (OpenCV's
-# OPENCV_CPU_DISABLE makes cv::checkHardwareSupport report no AVX2), so the SSE2 baseline build
-# that CPUs without AVX2 run is tested on this one too. Reuses build/ from scripts/test.sh.
+# The test suite again with the AVX2 builds (lighting kernels, band pass) switched off at run
+# time (OpenCV's OPENCV_CPU_DISABLE makes cv::checkHardwareSupport report no AVX2), so the SSE2
+# baseline build that CPUs without AVX2 run is tested on this one too. Reuses build/ from
+# scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -f build/CTestTestfile.cmake ]; then
