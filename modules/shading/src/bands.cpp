@@ -41,7 +41,8 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
     }
     bool inRange = true;  // then no face checks its colours
     for (const Vec3d& c : mesh.colors)
-        inRange &= gouraudInRange(c[0]) & gouraudInRange(c[1]) & gouraudInRange(c[2]);
+        for (int k = 0; k < 3; k++)
+            inRange &= gouraudInRange(c[k]);
     drawMeshInBands(canvas, mesh,
                     VertexColorShaders<GouraudShader<T>>{mesh.colors.data(), inRange}, fill);
 }
