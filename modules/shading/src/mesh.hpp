@@ -831,7 +831,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 for (int i = 0; i < count; i++) {
                     TriangleSetup triangle;
                     int vertexOrder[3];
-                    if (!setupBoxedTriangle(points[i], boxes[faces[i]], size, triangle, vertexOrder))
+                    if (!setupBoxedTriangle(points[i], boxes[faces[i]], size, triangle,
+                                            vertexOrder))
                         continue;
                     new (&batch[prepared++]) BatchFace{
                         triangle, shaders.make(triangle, vertexOrder, corners[i], faces[i]),

@@ -293,8 +293,9 @@ inline bool setupTriangle(const FixedPoint in[3], Size size, TriangleSetup& t, i
 it overlaps the target): the rows come from the box. Narrow faces (nearly all) are sorted
 without branches, on one 64-bit key per vertex: y, then x, then the input index, so that equal
 points keep their input order, as setupTriangle's stable sort does. */
-__attribute__((always_inline)) inline bool setupBoxedTriangle(const FixedPoint in[3], const SampleBox& box, Size size,
-                               TriangleSetup& t, int order[3])
+__attribute__((always_inline)) inline bool setupBoxedTriangle(const FixedPoint in[3],
+                                                              const SampleBox& box, Size size,
+                                                              TriangleSetup& t, int order[3])
 {
     const int64_t xMin = std::min({in[0].x, in[1].x, in[2].x});
     const int64_t xMax = std::max({in[0].x, in[1].x, in[2].x});
