@@ -762,7 +762,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     for (int k = 0; k < bandCount; k++)
         bandCost[k] = kBandCostPerFace * double(bandStart[k + 1] - bandStart[k]) + bandArea[k];
     BandSchedule schedule(bandCost, getNumThreads());
+#if OPENCV_SHADING_STAGE_TIMES
+    std::vector<std::pair<double, int>> workerTimes(schedule.workers(), {0.0, 0});
+    const int64 bandsStart = getTickCount();
+#endif
     parallel_for_(Range(0, schedule.workers()), [&](const Range& range) {
+#if OPENCV_SHADING_STAGE_TIMES
+        int workerBands = 0;
+#endif
         // The thread's kept buffers, moved into locals: the compiler keeps a local's fields in
         // registers, which it cannot do for a thread_local's (every store might change them).
         BandWorkspace& threadBuffers = BandWorkspace::ofThisThread();
@@ -799,6 +806,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         // Worker range.start's run, then what is left of the others' (all of them, where one
         // call gets several workers).
         for (int band; (band = schedule.next(range.start)) >= 0;) {
+#if OPENCV_SHADING_STAGE_TIMES
+            workerBands++;
+#endif
             const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
             shaders.beginBand(y0, y1);
             // Front to back is the painter's order reversed: increasing mean depth, and among
@@ -1048,7 +1058,17 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                       std::move(keptFaces)};
         if (threadBuffers.capacityBytes() > MeshWorkspace::kKeepBytes)
             threadBuffers = BandWorkspace();
+#if OPENCV_SHADING_STAGE_TIMES
+        workerTimes[range.start] = {
+            double(getTickCount() - bandsStart) * 1000.0 / getTickFrequency(), workerBands};
+#endif
     });
+#if OPENCV_SHADING_STAGE_TIMES
+    // When each worker finished, from the pass's start: how evenly the bands were shared.
+    for (size_t w = 0; w < workerTimes.size(); w++)
+        std::fprintf(stderr, "worker%zu %.3f ms (%d bands), ", w, workerTimes[w].first,
+                     workerTimes[w].second);
+#endif
     timer.mark("bands");
     if (work.capacityBytes() > MeshWorkspace::kKeepBytes)
         work = MeshWorkspace();

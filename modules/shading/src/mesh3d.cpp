@@ -154,8 +154,11 @@ struct Mesh3dInput {
     std::vector<Vec3i> faces;
 };
 
-//! Points lit together (Lighting::shadeMany) from a stack block.
-constexpr int kLightBlock = 64;
+/** Points waiting to be lit together (Lighting::lightRows), staged in the kernel's rows. */
+struct LightBlock {
+    alignas(32) float in[9][kLightBatch];
+    alignas(32) float out[6][kLightBatch];
+};
 
 //! The surface a mesh is drawn with, from its shading, lights and texture.
 Surface surfaceFor(int shadeType, bool lit, bool textured)
@@ -201,31 +204,27 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     const bool litVertices =
         surface == Surface::kTexturedVertexLit || (surface == Surface::kGouraud && lit);
     forChunks(vertexCount, chunkSizeFor(vertexCount, 4096), [&](int begin, int end) {
-        if (litVertices)
-            for (int block = begin; block < end; block += kLightBlock) {
-                const int count = std::min(kLightBlock, end - block);
-                const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
-                float points[kLightBlock * 9], values[kLightBlock * 6];
+        if (litVertices) {
+            LightBlock block;
+            const int outStride = textured ? 6 : 3;
+            const int first = stride - outStride;  // after the uv
+            for (int b = begin; b < end; b += kLightBatch) {
+                const int count = std::min(kLightBatch, end - b);
                 for (int j = 0; j < count; j++) {
-                    const Vec3d normal = unitOrZero(in.normals[block + j]);
+                    const Vec3d normal = unitOrZero(in.normals[b + j]);
                     for (int k = 0; k < 3; k++) {
-                        float* p = points + inStride * j;
-                        p[k] = float(in.verts[block + j][k]);
-                        p[3 + k] = float(normal[k]);
+                        block.in[k][j] = float(in.verts[b + j][k]);
+                        block.in[3 + k][j] = float(normal[k]);
                         if (!textured)
-                            p[6 + k] = float(in.colors[block + j][k]);
+                            block.in[6 + k][j] = float(in.colors[b + j][k]);
                     }
                 }
-                if (textured)
-                    lighting.termsMany(points, values, count);
-                else
-                    lighting.shadeMany(points, values, count);
-                const int first = stride - outStride;  // after the uv
+                lighting.lightRows(textured, block.in, block.out, count);
                 for (int j = 0; j < count; j++)
                     for (int k = 0; k < outStride; k++)
-                        screen.attributes[size_t(block + j) * stride + first + k] =
-                            values[outStride * j + k];
+                        screen.attributes[size_t(b + j) * stride + first + k] = block.out[k][j];
             }
+        }
         for (int i = begin; i < end; i++) {
             const Vec3d c = cam.toCamera(in.verts[i]);
             camera[i] = isFinite(c) ? c : Vec3d(nan, nan, nan);
@@ -264,18 +263,15 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     if (litFaces)
         faceLit.resize(faceCount);
     auto lightFaces = [&](int begin, int end) {
-        const int inStride = textured ? 6 : 9, outStride = textured ? 6 : 3;
-        float points[kLightBlock * 9] = {}, values[kLightBlock * 6];
-        int slots[kLightBlock];
+        const int outStride = textured ? 6 : 3;
+        LightBlock block;
+        int slots[kLightBatch];
         int count = 0;
         auto light = [&]() {
-            if (textured)
-                lighting.termsMany(points, values, count);
-            else
-                lighting.shadeMany(points, values, count);
+            lighting.lightRows(textured, block.in, block.out, count);
             for (int j = 0; j < count; j++)
                 for (int k = 0; k < outStride; k++)
-                    faceLit[slots[j]][k] = values[outStride * j + k];
+                    faceLit[slots[j]][k] = block.out[k][j];
             count = 0;
         };
         for (int i = begin; i < end; i++) {
@@ -284,16 +280,15 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             const Vec3i& f = in.faces[i];
             const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
             const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
-            float* p = points + inStride * count;
             for (int k = 0; k < 3; k++) {
-                p[k] = float(centroid[k]);
-                p[3 + k] = float(n[k]);
+                block.in[k][count] = float(centroid[k]);
+                block.in[3 + k][count] = float(n[k]);
                 if (!textured)
-                    p[6 + k] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
-                                      in.colors[f[2]][k]) / 3.0);
+                    block.in[6 + k][count] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
+                                                    in.colors[f[2]][k]) / 3.0);
             }
             slots[count++] = i;
-            if (count == kLightBlock)
+            if (count == kLightBatch)
                 light();
         }
         light();

@@ -77,38 +77,38 @@ struct Lighting {
         kernel.toColor = float(1.0 / unit), kernel.toUnit = float(unit);
     }
 
-    /** Lights `count` points: in[9 i ..] holds position, normal (unit or zero) and colour,
-    out[3 i ..] receives the lit colour, both colours in the canvas's units. In float lanes a
-    batch at a time where SIMD is built (for per-face and per-vertex lighting of big meshes). */
-    void shadeMany(const float* in, float* out, int count) const
+    /** Lights points 0 .. count - 1 (at most kLightBatch) given in the kernel's rows: in[k][j]
+    is value k of point j (k: position 0-2, normal 3-5 (unit or zero), colour 6-8 in the canvas's
+    units). With `terms`, only rows 0-5 are read and out[0..5] receive terms() (D, then S);
+    without, out[0..2] receive the lit colour. In float lanes where SIMD is built (for per-face
+    and per-vertex lighting of big meshes), else one point at a time in double. Lanes past count
+    are overwritten (the kernel computes whole vectors). */
+    void lightRows(bool terms, float (*in)[kLightBatch], float (*out)[kLightBatch],
+                   int count) const
     {
+        if (count <= 0)
+            return;
 #if OPENCV_SHADING_SIMD128
-        forBatches<9, 3>(in, out, count, shadeBatch);
+        const int padded = (count + 7) & ~7;  // whole vectors: the last point repeated
+        for (int k = 0; k < (terms ? 6 : 9); k++)
+            for (int j = count; j < padded; j++)
+                in[k][j] = in[k][count - 1];
+        if (terms)
+            termsBatch(kernel, in, out, count);
+        else
+            shadeBatch(kernel, in, out, count);
 #else
-        for (int i = 0; i < count; i++) {
-            const float* p = in + 9 * i;
-            const Vec3d c = shade(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]),
-                                  Vec3d(p[6], p[7], p[8]));
-            for (int k = 0; k < 3; k++)
-                out[3 * i + k] = float(c[k]);
-        }
-#endif
-    }
-
-    /** terms() of `count` points: in[6 i ..] holds position and normal (unit or zero), out[6 i
-    ..] receives D then S. */
-    void termsMany(const float* in, float* out, int count) const
-    {
-#if OPENCV_SHADING_SIMD128
-        forBatches<6, 6>(in, out, count, termsBatch);
-#else
-        for (int i = 0; i < count; i++) {
-            const float* p = in + 6 * i;
+        for (int j = 0; j < count; j++) {
+            const Vec3d p(in[0][j], in[1][j], in[2][j]), n(in[3][j], in[4][j], in[5][j]);
             Vec3d d, s;
-            terms(Vec3d(p[0], p[1], p[2]), Vec3d(p[3], p[4], p[5]), d, s);
+            if (terms)
+                this->terms(p, n, d, s);
+            else
+                d = shade(p, n, Vec3d(in[6][j], in[7][j], in[8][j]));
             for (int k = 0; k < 3; k++) {
-                out[6 * i + k] = float(d[k]);
-                out[6 * i + 3 + k] = float(s[k]);
+                out[k][j] = float(d[k]);
+                if (terms)
+                    out[3 + k][j] = float(s[k]);
             }
         }
 #endif
@@ -161,25 +161,6 @@ struct Lighting {
 
 private:
     std::vector<float> lightData;  //!< kernel's light positions, then intensities
-
-    /** Runs `batch` (shadeBatch or termsBatch) on points given kIn floats each, `count` of
-    them, writing kOut floats each: transposed to the kernel's rows and back, a batch at a time. */
-    template <int kIn, int kOut, typename Batch>
-    void forBatches(const float* in, float* out, int count, Batch&& batch) const
-    {
-        float rows[kIn][kLightBatch], lit[kOut][kLightBatch];
-        for (int first = 0; first < count; first += kLightBatch) {
-            const int n = std::min(kLightBatch, count - first);
-            const int padded = (n + 7) & ~7;  // whole vectors: the last point repeated
-            for (int j = 0; j < padded; j++)
-                for (int k = 0; k < kIn; k++)
-                    rows[k][j] = in[kIn * (first + std::min(j, n - 1)) + k];
-            batch(kernel, rows, lit, n);
-            for (int j = 0; j < n; j++)
-                for (int k = 0; k < kOut; k++)
-                    out[kOut * (first + j) + k] = lit[k][j];
-        }
-    }
 };
 
 //! Normalizes v; a zero (or non-finite-length) vector stays zero.
