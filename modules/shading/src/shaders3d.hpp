@@ -81,8 +81,9 @@ struct Lighting {
     is value k of point j (k: position 0-2, normal 3-5 (unit or zero), colour 6-8 in the canvas's
     units). With `terms`, only rows 0-5 are read and out[0..5] receive terms() (D, then S);
     without, out[0..2] receive the lit colour. In float lanes where SIMD is built (for per-face
-    and per-vertex lighting of big meshes), else one point at a time in double. Lanes past count
-    are overwritten (the kernel computes whole vectors). */
+    and per-vertex lighting of big meshes), else one point at a time in double. The kernel
+    computes whole vectors: in's lanes from count to the next multiple of 8 are set to the last
+    point, and out's lanes there are written too. */
     void lightRows(bool terms, float (*in)[kLightBatch], float (*out)[kLightBatch],
                    int count) const
     {
