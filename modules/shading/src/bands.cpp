@@ -100,12 +100,13 @@ struct SurfaceShaders {
             if (order[i] == 2)
                 s.slotOf2 = i;
         }
+        const float* values = screen->faceValues.data() + size_t(face) * screen->faceStride;
         if constexpr (kSurface == Surface::kFlat)
             for (int k = 0; k < 3; k++)
-                s.color[k] = toChannel<T>(screen->faceValues[face][k]);
+                s.color[k] = toChannel<T>(values[k]);
         if constexpr (kSurface == Surface::kTexturedFaceLit)
             for (int k = 0; k < 6; k++)
-                s.faceLight[k] = screen->faceValues[face][k];
+                s.faceLight[k] = values[k];
         return s;
     }
 };

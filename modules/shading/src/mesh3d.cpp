@@ -150,7 +150,6 @@ struct Mesh3dInput {
     std::vector<Point2d> texCoords;  //!< textured meshes (then `colors` is empty)
     std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
     std::vector<Vec3d> camera;       //!< per vertex: camera coordinates (NaN: not finite)
-    std::vector<Vec6f> faceLit;      //!< per face: lit flat colours, or D, S when textured
     std::vector<Vec3i> faces;
 };
 
@@ -256,43 +255,6 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     const int faceChunk = chunkSizeFor(faceCount, 4096);
     const int chunks = (faceCount + faceChunk - 1) / faceChunk;
     std::vector<int> chunkFaces(chunks + 1, 0), chunkVertices(chunks + 1, 0);
-    // Lit flat faces: each lit once, at its centroid with its face normal and mean colour (or,
-    // textured, its D and S), in the pass that finds which faces are drawn.
-    std::vector<Vec6f>& faceLit = in.faceLit;
-    const bool litFaces = shade == SHADE_FLAT && lit;
-    if (litFaces)
-        faceLit.resize(faceCount);
-    auto lightFaces = [&](int begin, int end) {
-        const int outStride = textured ? 6 : 3;
-        LightBlock block;
-        int slots[kLightBatch];
-        int count = 0;
-        auto light = [&]() {
-            lighting.lightRows(textured, block.in, block.out, count);
-            for (int j = 0; j < count; j++)
-                for (int k = 0; k < outStride; k++)
-                    faceLit[slots[j]][k] = block.out[k][j];
-            count = 0;
-        };
-        for (int i = begin; i < end; i++) {
-            if (kind[i] == kSkip)
-                continue;
-            const Vec3i& f = in.faces[i];
-            const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
-            const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
-            for (int k = 0; k < 3; k++) {
-                block.in[k][count] = float(centroid[k]);
-                block.in[3 + k][count] = float(n[k]);
-                if (!textured)
-                    block.in[6 + k][count] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
-                                                    in.colors[f[2]][k]) / 3.0);
-            }
-            slots[count++] = i;
-            if (count == kLightBatch)
-                light();
-        }
-        light();
-    };
     forChunks(faceCount, faceChunk, [&](int begin, int end) {
         int faces = 0, vertices = 0;
         for (int i = begin; i < end; i++) {
@@ -320,8 +282,6 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         }
         chunkFaces[begin / faceChunk + 1] = faces;
         chunkVertices[begin / faceChunk + 1] = vertices;
-        if (litFaces)
-            lightFaces(begin, end);
     });
     for (int c = 0; c < chunks; c++) {
         chunkFaces[c + 1] += chunkFaces[c];
@@ -331,11 +291,24 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.mesh.faces.resize(outFaces);
     screen.source.resize(outFaces);
     screen.mesh.faceDepth.resize(outFaces);
-    screen.faceValues.resize(shade == SHADE_FLAT ? outFaces : 0);
+    // Flat: per output face its colour, or when textured and lit its D and S.
+    const int faceStride = surface == Surface::kFlat              ? 3
+                           : surface == Surface::kTexturedFaceLit ? 6
+                                                                  : 0;
+    screen.faceStride = faceStride;
+    screen.faceValues.resize(size_t(outFaces) * faceStride);
+    const bool litFaces = shade == SHADE_FLAT && lit;
     projected.resize(outVertices);
     screen.invZ.resize(outVertices);
     screen.attributes.resize(size_t(outVertices) * stride);
 
+    // Raw pointers: the loop stores through several of them, and the vectors' own pointers
+    // would be reloaded after each store.
+    Vec3i* const outFace = screen.mesh.faces.data();
+    int* const source = screen.source.data();
+    double* const faceDepth = screen.mesh.faceDepth.data();
+    const double* const invZ = screen.invZ.data();
+    float* const faceValues = screen.faceValues.data();
     forChunks(faceCount, faceChunk, [&](int begin, int end) {
         int nextFace = chunkFaces[begin / faceChunk];
         int nextVertex = vertexCount + chunkVertices[begin / faceChunk];
@@ -356,13 +329,52 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 va[k] = fa[k] + s * (ba[k] - fa[k]);
             return v;
         };
+        // Lit flat faces: each lit once, at its centroid with its face normal and mean colour
+        // (or, textured, its D and S), a batch at a time; the result goes to its pieces
+        // [first, end) of the output faces.
+        LightBlock block;
+        int firstPiece[kLightBatch], endPiece[kLightBatch];
+        int staged = 0;
+        auto lightStaged = [&]() {
+            lighting.lightRows(textured, block.in, block.out, staged);
+            for (int j = 0; j < staged; j++)
+                for (int k = firstPiece[j]; k < endPiece[j]; k++)
+                    for (int c = 0; c < faceStride; c++)
+                        faceValues[size_t(k) * faceStride + c] = block.out[c][j];
+            staged = 0;
+        };
+        auto lightFace = [&](const Vec3i& f, int first, int pieceEnd) {
+            const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
+            const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
+            for (int k = 0; k < 3; k++) {
+                block.in[k][staged] = float(centroid[k]);
+                block.in[3 + k][staged] = float(n[k]);
+                if (!textured)
+                    block.in[6 + k][staged] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
+                                                     in.colors[f[2]][k]) / 3.0);
+            }
+            firstPiece[staged] = first, endPiece[staged] = pieceEnd;
+            if (++staged == kLightBatch)
+                lightStaged();
+        };
         for (int i = begin; i < end; i++) {
             if (kind[i] == kSkip)
                 continue;
             const Vec3i& f = in.faces[i];
             const int first = nextFace;
+            // Painter's: the face's mean depth; z-buffer: each piece's nearest vertex, the order
+            // that lets nearer faces hide farther ones before their setup.
+            const double depth =
+                painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
+            auto emit = [&](int v0, int v1, int v2) {
+                outFace[nextFace] = Vec3i(v0, v1, v2);
+                source[nextFace] = i;
+                faceDepth[nextFace] =
+                    painter ? depth : 1.0 / std::max(std::max(invZ[v0], invZ[v1]), invZ[v2]);
+                nextFace++;
+            };
             if (kind[i] == kWhole) {
-                screen.mesh.faces[nextFace++] = f;
+                emit(f[0], f[1], f[2]);
             } else {
                 // Rotate so that f[r] is the vertex alone on its side of the plane; rotation
                 // keeps the winding.
@@ -373,36 +385,23 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 const int a = f[r], b = f[(r + 1) % 3], c = f[(r + 2) % 3];
                 if (aloneInFront) {  // a in front: triangle a, ab, ca
                     const int ab = cut(a, b), ca = cut(a, c);
-                    screen.mesh.faces[nextFace++] = Vec3i(a, ab, ca);
+                    emit(a, ab, ca);
                 } else {  // a behind: quad ab, b, c, ca as two triangles
                     const int ab = cut(b, a), ca = cut(c, a);
-                    screen.mesh.faces[nextFace++] = Vec3i(ab, b, c);
-                    screen.mesh.faces[nextFace++] = Vec3i(ab, c, ca);
+                    emit(ab, b, c);
+                    emit(ab, c, ca);
                 }
             }
-            Vec6f flat;  // kFlat: the colour; kTexturedFaceLit: D, S
             if (litFaces) {
-                flat = faceLit[i];
+                lightFace(f, first, nextFace);
             } else if (surface == Surface::kFlat) {  // unlit: the mean as the 2D flats() takes it
                 const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
-                for (int k = 0; k < 3; k++)
-                    flat[k] = float((c0[k] + c1[k] + c2[k]) / 3.0);
-            }
-            const double depth =
-                painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
-            for (int k = first; k < nextFace; k++) {
-                screen.source[k] = i;
-                // Painter's: the face's mean depth; z-buffer: the piece's nearest vertex, the
-                // order that lets nearer faces hide farther ones before their setup.
-                const Vec3i& piece = screen.mesh.faces[k];
-                screen.mesh.faceDepth[k] =
-                    painter ? depth
-                            : 1.0 / std::max({screen.invZ[piece[0]], screen.invZ[piece[1]],
-                                              screen.invZ[piece[2]]});
-                if (shade == SHADE_FLAT)
-                    screen.faceValues[k] = flat;
+                for (int k = first; k < nextFace; k++)
+                    for (int j = 0; j < 3; j++)
+                        faceValues[size_t(k) * 3 + j] = float((c0[j] + c1[j] + c2[j]) / 3.0);
             }
         }
+        lightStaged();
     });
 }
 

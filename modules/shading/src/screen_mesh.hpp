@@ -24,12 +24,15 @@ struct ScreenMesh {
     Surface surface = Surface::kFlat;
     int stride = 0;                  //!< attributeCount(surface)
     std::vector<int> source;         //!< per face: its index in the caller's faces
-    std::vector<Vec6f> faceValues;   //!< per face: kFlat its colour (canvas units), kTexturedFaceLit its D, S
+    //! Per face, faceStride values: kFlat its colour (canvas units, 3), kTexturedFaceLit its D
+    //! and S (6); empty for the other surfaces.
+    std::vector<float> faceValues;
+    int faceStride = 0;
 
     size_t capacityBytes() const
     {
         return mesh.capacityBytes() + (invZ.capacity() + attributes.capacity()) * sizeof(double) +
-               source.capacity() * sizeof(int) + faceValues.capacity() * sizeof(Vec6f);
+               source.capacity() * sizeof(int) + faceValues.capacity() * sizeof(float);
     }
 };
 
