@@ -149,7 +149,8 @@ struct Mesh3dInput {
     std::vector<Vec3d> verts, colors, normals;
     std::vector<Point2d> texCoords;  //!< textured meshes (then `colors` is empty)
     std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
-    std::vector<Vec3d> camera;       //!< per vertex: camera coordinates (NaN: not finite)
+    std::vector<double> cameraZ;     //!< per vertex: camera z (NaN: a coordinate not finite)
+    std::vector<uint8_t> side;       //!< per vertex: where it lies, a VertexSide
     std::vector<Vec3i> faces;
 };
 
@@ -158,6 +159,9 @@ struct LightBlock {
     alignas(32) float in[9][kLightBatch];
     alignas(32) float out[6][kLightBatch];
 };
+
+//! Where a vertex lies for clipping at zNear (Mesh3dInput::side).
+enum VertexSide : uint8_t { kNotFinite = 0, kBehind = 1, kInFront = 2 };
 
 //! The surface a mesh is drawn with, from its shading, lights and texture.
 Surface surfaceFor(int shadeType, bool lit, bool textured)
@@ -190,9 +194,13 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     const bool painter = settings.visibility == VISIBILITY_PAINTER;
     const Vec3d eye = cam.centre();
 
-    // Vertices: camera coordinates, validity, the projection of those in front, attributes.
-    std::vector<Vec3d>& camera = in.camera;
-    camera.resize(vertexCount);
+    // Vertices: camera depth, side of the near plane, the projection of those in front,
+    // attributes. The faces' passes read a byte per vertex, not its camera coordinates: the
+    // vertices of a big mesh's faces come from all over its arrays.
+    std::vector<double>& cameraZ = in.cameraZ;
+    cameraZ.resize(vertexCount);
+    std::vector<uint8_t>& side = in.side;
+    side.resize(vertexCount);
     std::vector<Point2d>& projected = screen.mesh.vertices;
     projected.resize(vertexCount);
     screen.invZ.resize(vertexCount);
@@ -226,8 +234,10 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         }
         for (int i = begin; i < end; i++) {
             const Vec3d c = cam.toCamera(in.verts[i]);
-            camera[i] = isFinite(c) ? c : Vec3d(nan, nan, nan);
-            const bool front = c[2] >= zNear;  // false for NaN
+            const bool finite = isFinite(c);
+            cameraZ[i] = finite ? c[2] : nan;
+            const bool front = finite && c[2] >= zNear;
+            side[i] = !finite ? kNotFinite : front ? kInFront : kBehind;
             projected[i] = front ? cam.project(c) : Point2d(nan, nan);
             screen.invZ[i] = 1.0 / c[2];
             double* a = screen.attributes.data() + size_t(i) * stride;
@@ -259,11 +269,9 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         int faces = 0, vertices = 0;
         for (int i = begin; i < end; i++) {
             const Vec3i& f = in.faces[i];
-            const Vec3d& c0 = camera[f[0]];
-            const Vec3d& c1 = camera[f[1]];
-            const Vec3d& c2 = camera[f[2]];
+            const int s0 = side[f[0]], s1 = side[f[1]], s2 = side[f[2]];
             kind[i] = kSkip;
-            if (std::isnan(c0[0]) || std::isnan(c1[0]) || std::isnan(c2[0]))
+            if (s0 == kNotFinite || s1 == kNotFinite || s2 == kNotFinite)
                 continue;
             if (textured && !(usableTexCoord(in.texCoords[f[0]]) &&
                               usableTexCoord(in.texCoords[f[1]]) &&
@@ -275,7 +283,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 if (settings.cullMode == CULL_BACK ? !(facing > 0) : !(facing < 0))
                     continue;
             }
-            const int behind = (c0[2] < zNear) + (c1[2] < zNear) + (c2[2] < zNear);
+            const int behind = (s0 == kBehind) + (s1 == kBehind) + (s2 == kBehind);
             kind[i] = behind == 0 ? kWhole : behind == 1 ? kCutOne : behind == 2 ? kCutTwo : kSkip;
             faces += kind[i] == kWhole || kind[i] == kCutTwo ? 1 : kind[i] == kCutOne ? 2 : 0;
             vertices += kind[i] >= kCutOne ? 2 : 0;
@@ -315,8 +323,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         // The point where edge front -> back meets the near plane, as a new vertex. Always
         // computed from the vertex in front, so faces sharing the edge share the point exactly.
         auto cut = [&](int front, int back) {
-            const Vec3d& a = camera[front];
-            const Vec3d& b = camera[back];
+            const Vec3d a = cam.toCamera(in.verts[front]), b = cam.toCamera(in.verts[back]);
             const double s = (a[2] - zNear) / (a[2] - b[2]);
             const Vec3d c(a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), zNear);
             const int v = nextVertex++;
@@ -365,7 +372,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             // Painter's: the face's mean depth; z-buffer: each piece's nearest vertex, the order
             // that lets nearer faces hide farther ones before their setup.
             const double depth =
-                painter ? (camera[f[0]][2] + camera[f[1]][2] + camera[f[2]][2]) / 3.0 : 0;
+                painter ? (cameraZ[f[0]] + cameraZ[f[1]] + cameraZ[f[2]]) / 3.0 : 0;
             auto emit = [&](int v0, int v1, int v2) {
                 outFace[nextFace] = Vec3i(v0, v1, v2);
                 source[nextFace] = i;
@@ -380,7 +387,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 // keeps the winding.
                 const bool aloneInFront = kind[i] == kCutTwo;
                 int r = 0;
-                while ((camera[f[r]][2] < zNear) == aloneInFront)
+                while ((side[f[r]] == kBehind) == aloneInFront)
                     r++;
                 const int a = f[r], b = f[(r + 1) % 3], c = f[(r + 2) % 3];
                 if (aloneInFront) {  // a in front: triangle a, ab, ca
