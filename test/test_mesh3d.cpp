@@ -640,4 +640,58 @@ TEST(DrawMesh3dErrors, EveryBadArgumentLeavesCanvasAndDepthUntouched)
                  cv::Exception);
 }
 
+// Big inputs are converted in slices in parallel and checked as each slice arrives: a bad face
+// index or normal in any slice, the last one included, is reported by its position, and the
+// canvas is left alone.
+TEST(DrawMesh3dErrors, BadValuesFoundInEverySliceOfABigMesh)
+{
+    const Cam cam;
+    const int vertexCount = 40000, faceCount = 40000;  // 120,000 values each: four slices
+    std::vector<Vec3d> v(vertexCount), c(vertexCount, Vec3d(0.5, 0.5, 0.5));
+    std::vector<Vec3f> n(vertexCount, Vec3f(0, 0, -1));
+    for (int i = 0; i < vertexCount; i++)
+        v[i] = Vec3d(-1 + 2.0 * (i % 200) / 199, -1 + 2.0 * (i / 200) / 199, 4);
+    std::vector<Vec3i> f(faceCount);
+    for (int i = 0; i < faceCount; i++)
+        f[i] = Vec3i(i % (vertexCount - 201), i % (vertexCount - 201) + 1,
+                     i % (vertexCount - 201) + 200);
+    RenderSettings s;
+    s.lights = {PointLight(Point3d(0, 0, 0), Vec3d(1, 1, 1))};
+    for (int at : {0, 50000, 3 * faceCount - 1}) {
+        std::vector<Vec3i> bad = f;
+        bad[at / 3][at % 3] = at % 2 ? -1 : vertexCount;
+        Mat canvas(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75));
+        const Mat before = canvas.clone();
+        try {
+            drawMesh3d(canvas, v, bad, c, cam.K, cam.rvec, cam.tvec, s, n);
+            ADD_FAILURE() << "face index " << at << ": no exception";
+        } catch (const cv::Exception& e) {
+            EXPECT_NE(e.err.find("faces: face " + std::to_string(at / 3) + " "), std::string::npos)
+                << e.err;
+        }
+        EXPECT_EQ(shading_test::maxAbsDiff(canvas, before), 0);
+    }
+    for (int at : {1, 60001, 3 * vertexCount - 1}) {
+        std::vector<Vec3f> bad = n;
+        bad[at / 3][at % 3] = at % 2 ? std::numeric_limits<float>::infinity()
+                                     : std::numeric_limits<float>::quiet_NaN();
+        Mat canvas(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75));
+        const Mat before = canvas.clone();
+        try {
+            drawMesh3d(canvas, v, f, c, cam.K, cam.rvec, cam.tvec, s, bad);
+            ADD_FAILURE() << "normal value " << at << ": no exception";
+        } catch (const cv::Exception& e) {
+            EXPECT_NE(e.err.find("normals: normal " + std::to_string(at / 3) + " "),
+                      std::string::npos)
+                << e.err;
+        }
+        EXPECT_EQ(shading_test::maxAbsDiff(canvas, before), 0);
+    }
+    // And with good values the same mesh draws.
+    Mat canvas(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75));
+    EXPECT_NO_THROW(drawMesh3d(canvas, v, f, c, cam.K, cam.rvec, cam.tvec, s, n));
+    EXPECT_GT(shading_test::maxAbsDiff(canvas, Mat(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75))),
+              0);
+}
+
 }  // namespace

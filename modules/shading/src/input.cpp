@@ -50,29 +50,50 @@ static int countRows(const Mat& m, const char* argName, int dims, int expectedCo
 //! Values per parallel slice: smaller inputs are converted at once.
 constexpr int kConversionSlice = 1 << 15;
 
-void PendingConversions::add(const Mat& src, Mat& dst)
+static bool anyIndexOutside(const int* indices, size_t n, int vertexCount);
+
+//! Runs `check` on the values of dst, a single row or a continuous matrix.
+static void checkConverted(const Mat& dst, const ConversionCheck& check)
+{
+    const size_t n = dst.total() * dst.channels();
+    if (check.kind == ConversionCheck::kIndices) {
+        if (anyIndexOutside(dst.ptr<int>(), n, check.limit))
+            check.failed->store(true, std::memory_order_relaxed);
+    } else if (check.kind == ConversionCheck::kFinite) {
+        const double* v = dst.ptr<double>();
+        bool finite = true;
+        for (size_t i = 0; i < n; i++)
+            finite &= v[i] - v[i] == 0;  // NaN for infinities and NaN; vectorizes
+        if (!finite)
+            check.failed->store(true, std::memory_order_relaxed);
+    }
+}
+
+void PendingConversions::add(const Mat& src, Mat& dst, const ConversionCheck& check)
 {
     if (!src.isContinuous() || src.total() * src.channels() <= size_t(kConversionSlice) ||
         src.total() * src.channels() > size_t(INT_MAX)) {
         src.convertTo(dst, dst.depth());  // dst has the right size and type: no reallocation
+        checkConverted(dst, check);
         return;
     }
-    jobs_.emplace_back(src.reshape(1, 1), dst.reshape(1, 1));
+    jobs_.push_back({src.reshape(1, 1), dst.reshape(1, 1), check});
 }
 
 void PendingConversions::run()
 {
     std::vector<std::pair<int, int>> slices;  // (job, first value)
     for (size_t j = 0; j < jobs_.size(); j++)
-        for (int v = 0; v < jobs_[j].first.cols; v += kConversionSlice)
+        for (int v = 0; v < jobs_[j].src.cols; v += kConversionSlice)
             slices.emplace_back(int(j), v);
     parallel_for_(Range(0, int(slices.size())), [&](const Range& r) {
         for (int i = r.start; i < r.end; i++) {
-            const std::pair<Mat, Mat>& job = jobs_[slices[i].first];
+            const Job& job = jobs_[slices[i].first];
             const int begin = slices[i].second;
-            const int end = std::min(begin + kConversionSlice, job.first.cols);
-            Mat dst = job.second.colRange(begin, end);
-            job.first.colRange(begin, end).convertTo(dst, dst.depth());
+            const int end = std::min(begin + kConversionSlice, job.src.cols);
+            Mat dst = job.dst.colRange(begin, end);
+            job.src.colRange(begin, end).convertTo(dst, dst.depth());
+            checkConverted(dst, job.check);
         }
     });
     jobs_.clear();
@@ -107,7 +128,8 @@ static bool anyIndexOutside(const int* indices, size_t n, int vertexCount)
 straight into its memory (now, or in pending->run()). */
 template <typename T>
 static void readItems(InputArray arr, const char* argName, int expectedCount,
-                      std::vector<T>& items, PendingConversions* pending = nullptr)
+                      std::vector<T>& items, PendingConversions* pending = nullptr,
+                      const ConversionCheck& check = ConversionCheck())
 {
     using Info = DataType<T>;
     static_assert(sizeof(T) == sizeof(typename Info::channel_type) * Info::channels,
@@ -116,10 +138,12 @@ static void readItems(InputArray arr, const char* argName, int expectedCount,
     items.resize(size_t(countRows(m, argName, Info::channels, expectedCount)));
     if (!items.empty()) {
         Mat dst(m.rows, m.cols, CV_MAKETYPE(traits::Depth<T>::value, m.channels()), items.data());
-        if (pending)
-            pending->add(m, dst);
-        else
+        if (pending) {
+            pending->add(m, dst, check);
+        } else {
             m.convertTo(dst, traits::Depth<T>::value);  // the right size and type: no reallocation
+            checkConverted(dst, check);
+        }
     }
 }
 
@@ -136,21 +160,27 @@ void readColors(InputArray arr, const char* argName, int expectedCount, std::vec
 }
 
 void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
-                 PendingConversions* pending)
+                 PendingConversions* pending, std::atomic<bool>* nonFinite)
 {
-    readItems(arr, argName, expectedCount, out, pending);
+    ConversionCheck check;
+    if (nonFinite)
+        check.kind = ConversionCheck::kFinite, check.failed = nonFinite;
+    readItems(arr, argName, expectedCount, out, pending, check);
 }
 
 void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces,
                PendingConversions* pending)
 {
     if (arr.depth() == CV_32S) {
-        readItems(arr, argName, -1, faces, pending);
+        // Each slice is checked (one SIMD pass) as it is copied; the error path finds the first
+        // bad index.
+        std::atomic<bool> outside(false);
+        ConversionCheck check;
+        check.kind = ConversionCheck::kIndices, check.limit = vertexCount, check.failed = &outside;
+        readItems(arr, argName, -1, faces, pending, check);
         if (pending)
             pending->run();
-        // One SIMD pass; the error path finds the first bad index.
-        if (anyIndexOutside(faces.empty() ? nullptr : &faces[0][0], 3 * faces.size(),
-                            vertexCount))
+        if (outside)
             for (size_t i = 0; i < faces.size(); i++)
                 for (int k = 0; k < 3; k++)
                     if (faces[i][k] < 0 || faces[i][k] >= vertexCount)

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <atomic>
 #include <utility>
 #include <vector>
 
@@ -14,16 +15,30 @@ namespace cv {
 namespace shading {
 namespace detail {
 
+/** What a conversion checks in the values it has just written, while they are in cache: that
+CV_32S values are indices in [0, limit), or that CV_64F values are finite. A failed check sets
+`failed`; the caller then finds and reports the first bad value. */
+struct ConversionCheck {
+    enum Kind { kNone, kIndices, kFinite } kind = kNone;
+    int limit = 0;                         //!< kIndices: the vertex count
+    std::atomic<bool>* failed = nullptr;  //!< set when a value fails
+};
+
 /** Conversions of large inputs, collected by the readers and then run together, in slices, in
 parallel: a mesh's four arrays are copied in a fraction of the time one thread takes. */
 class PendingConversions {
 public:
-    //! Converts src into dst (same size and channels, dst's depth) now or in run().
-    void add(const Mat& src, Mat& dst);
+    //! Converts src into dst (same size and channels, dst's depth) now or in run(), then checks
+    //! what it wrote.
+    void add(const Mat& src, Mat& dst, const ConversionCheck& check = ConversionCheck());
     void run();
 
 private:
-    std::vector<std::pair<Mat, Mat>> jobs_;  //!< flattened to single rows of values
+    struct Job {
+        Mat src, dst;  //!< flattened to single rows of values
+        ConversionCheck check;
+    };
+    std::vector<Job> jobs_;
 };
 
 // Each reader accepts rows of CV_32F/CV_64F/CV_32S values (see the public header for the forms)
@@ -34,9 +49,11 @@ void readPoints(InputArray arr, const char* argName, int expectedCount, std::vec
                 PendingConversions* pending = nullptr);
 void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
                 PendingConversions* pending = nullptr);
-//! 3D points or vectors (vertices, normals): rows of x, y, z.
+/** 3D points or vectors (vertices, normals): rows of x, y, z. With `nonFinite`, it is set when
+some value is not finite (checked as the values are converted, once they have arrived). */
 void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
-                 PendingConversions* pending = nullptr);
+                 PendingConversions* pending = nullptr,
+                 std::atomic<bool>* nonFinite = nullptr);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
                 PendingConversions* pending = nullptr);

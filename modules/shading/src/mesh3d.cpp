@@ -16,9 +16,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <climits>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace cv {
 namespace shading {
@@ -71,20 +71,13 @@ void forChunks(int count, int chunk, Fn&& fn)
     });
 }
 
-//! The index of the first vector of `v` with a non-finite value, or -1; in parallel chunks.
+//! The index of the first vector of `v` with a non-finite value, or -1.
 int firstNonFinite(const std::vector<Vec3d>& v)
 {
-    std::atomic<int> first(INT_MAX);
-    forChunks(int(v.size()), 16384, [&](int begin, int end) {
-        for (int i = begin; i < end && i < first.load(std::memory_order_relaxed); i++)
-            if (!isFinite(v[i])) {
-                int seen = first.load();
-                while (i < seen && !first.compare_exchange_weak(seen, i)) {
-                }
-                break;
-            }
-    });
-    return first == INT_MAX ? -1 : first.load();
+    for (size_t i = 0; i < v.size(); i++)
+        if (!isFinite(v[i]))
+            return int(i);
+    return -1;
 }
 
 /** Vertex normals (seed 004): the normalized sum of the unit normals of the faces using each
@@ -180,7 +173,7 @@ Surface surfaceFor(int shadeType, bool lit, bool textured)
 /** Moves the mesh into the camera frame, culls, clips at zNear and projects: fills `screen`,
 with the attributes of `screen.surface` per vertex (see Surface). */
 void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& settings,
-                     const Lighting& lighting, ScreenMesh& screen)
+                     const Lighting& lighting, ScreenMesh& screen, StageTimer& timer)
 {
     const int vertexCount = int(in.verts.size()), faceCount = int(in.faces.size());
     const bool lit = lighting.lit();
@@ -257,6 +250,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         }
     });
 
+    timer.mark("vertices");
     // Faces, in two parallel passes over chunks: what each face becomes (culled, whole, or cut
     // into one or two triangles with two new vertices), then, at offsets from prefix sums, the
     // faces and new vertices themselves. Face order (and so the tie order) is kept.
@@ -291,6 +285,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         chunkFaces[begin / faceChunk + 1] = faces;
         chunkVertices[begin / faceChunk + 1] = vertices;
     });
+    timer.mark("faces");
     for (int c = 0; c < chunks; c++) {
         chunkFaces[c + 1] += chunkFaces[c];
         chunkVertices[c + 1] += chunkVertices[c];
@@ -344,10 +339,16 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         int staged = 0;
         auto lightStaged = [&]() {
             lighting.lightRows(textured, block.in, block.out, staged);
-            for (int j = 0; j < staged; j++)
-                for (int k = firstPiece[j]; k < endPiece[j]; k++)
-                    for (int c = 0; c < faceStride; c++)
-                        faceValues[size_t(k) * faceStride + c] = block.out[c][j];
+            auto store = [&](auto values) {  // 3 or 6 a face, known to the compiler
+                for (int j = 0; j < staged; j++)
+                    for (int k = firstPiece[j]; k < endPiece[j]; k++)
+                        for (int c = 0; c < values; c++)
+                            faceValues[size_t(k) * values + c] = block.out[c][j];
+            };
+            if (textured)
+                store(std::integral_constant<int, 6>());
+            else
+                store(std::integral_constant<int, 3>());
             staged = 0;
         };
         auto lightFace = [&](const Vec3i& f, int first, int pieceEnd) {
@@ -462,16 +463,17 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
         readColors(vcolors, "vcolors", vertexCount, in.colors, &pending);
         in.texCoords.clear();
     }
+    std::atomic<bool> normalsNonFinite(false);  // checked as they are converted
     if (!normals.empty())
-        readVectors(normals, "normals", vertexCount, in.normals, &pending);
+        readVectors(normals, "normals", vertexCount, in.normals, &pending, &normalsNonFinite);
     readFaces(faces, "faces", vertexCount, in.faces, &pending);  // last: runs the conversions
     timer.mark("read");
     const bool lit = !settings.lights.empty();
     const bool needNormals = lit && settings.shadeType != SHADE_FLAT;
     if (!normals.empty()) {
-        const int bad = firstNonFinite(in.normals);
-        if (bad >= 0)
-            CV_Error(Error::StsOutOfRange, format("normals: normal %d is not finite", bad));
+        if (normalsNonFinite)
+            CV_Error(Error::StsOutOfRange,
+                     format("normals: normal %d is not finite", firstNonFinite(in.normals)));
     } else if (needNormals) {
         vertexNormalsOf(in.verts, in.faces, in.normals, in.faceNormals);
     }
@@ -495,8 +497,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     lighting.prepare();
     timer.mark("normals");
     thread_local ScreenMesh screen;
-    buildScreenMesh(in, cam, settings, lighting, screen);
-    timer.mark("screen");
+    buildScreenMesh(in, cam, settings, lighting, screen, timer);
+    timer.mark("pieces");
 
     // Outputs: created only now that every argument passed.
     const bool zbuffer = settings.visibility == VISIBILITY_ZBUFFER;
