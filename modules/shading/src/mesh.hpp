@@ -417,7 +417,7 @@ OPENCV_SHADING_ISA_BEGIN
 fresh ones would be fresh pages, and their page faults cost more than drawing a small mesh. */
 struct MeshWorkspace {
     std::vector<FixedPoint> snapped;  //!< per vertex
-    std::vector<double> depths;       //!< per face: its mean depth
+    std::vector<double> depths;       //!< per face: its vertices' mean depth (not faceDepth)
     std::vector<SampleBox> boxes;     //!< per face; no rows: culled
     std::vector<uint64_t> binned;     //!< per face and band it crosses
 
@@ -632,8 +632,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
     // its area; per chunk, the range of the depths (for quantizing them below) and the faces and
     // area each band receives (for binning).
-    std::vector<double>& depths = work.depths;  // culled faces keep stale depths, never used
-    depths.resize(byDepth ? faceCount : 0);
+    // Each face's sort key: the given faceDepth, or its vertices' mean depth, computed here
+    // (culled faces keep stale means, never used).
+    std::vector<double>& depths = work.depths;
+    depths.resize(byDepth && !byFaceDepth ? faceCount : 0);
+    const double* const faceKeys = byFaceDepth ? mesh.faceDepth.data() : depths.data();
     std::vector<SampleBox>& boxes = work.boxes;
     boxes.resize(faceCount);
     // Enough chunks to balance the threads, few enough to bound the per-chunk band tables.
@@ -668,7 +671,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                     : (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
                     if (std::isnan(mean))
                         continue;  // no place in the order: not drawn
-                    depths[i] = mean;
+                    if (!byFaceDepth)
+                        depths[i] = mean;
                     if (std::abs(mean) < inf) {
                         lo = std::min(lo, mean);
                         hi = std::max(hi, mean);
@@ -713,7 +717,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     }
     const double depthScale = maxDepth > minDepth ? double(UINT32_MAX) / (maxDepth - minDepth) : 0;
     auto quantizedKey = [&](int face) {
-        return byDepth ? quantizeDepth(depths[face], minDepth, depthScale) : uint32_t(0);
+        return byDepth ? quantizeDepth(faceKeys[face], minDepth, depthScale) : uint32_t(0);
     };
 
     timer.mark("boxes");
@@ -821,7 +825,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 sortBandEntries(order, orderSize, scratch, 8);
             } else if (byDepth) {
                 sortBandEntries(order, orderSize, scratch);
-                refineEqualKeys(order, orderSize, depths.data(), refineRun);
+                refineEqualKeys(order, orderSize, faceKeys, refineRun);
             }
 
             // Sets up faces[0 .. count) into `batch`, returning how many cover something. Faces
@@ -871,7 +875,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             const int face = entryFace(order[next]);
                             const SampleBox& box = boxes[face];
                             // Its nearest vertex, less float rounding: no sample is nearer.
-                            const float nearest = float(depths[face]) * (1.f - 1e-6f);
+                            const float nearest = float(faceKeys[face]) * (1.f - 1e-6f);
                             if (!zbuffer.hidden(std::max(box.rowBegin, y0) - y0,
                                                 std::min(box.rowEnd, y1) - y0, box.colFirst,
                                                 box.colLast, nearest))
