@@ -347,7 +347,7 @@ PYBIND11_MODULE(opencv_shading, m) {
         .def(py::init([](ShadeArg shadeType, int visibility, int cullMode, double zNear,
                          const py::object& lights, const py::object& ambient, double ka,
                          double kd, double ks, double shininess, int textureInterpolation,
-                         int textureBorder) {
+                         int textureBorder, bool clear, const py::object& background) {
                  sh::RenderSettings s;
                  s.shadeType = shadeType.value;
                  s.visibility = visibility;
@@ -361,6 +361,8 @@ PYBIND11_MODULE(opencv_shading, m) {
                  s.shininess = shininess;
                  s.textureInterpolation = textureInterpolation;
                  s.textureBorder = textureBorder;
+                 s.clear = clear;
+                 s.background = toScalar(background, "background");
                  return s;
              }),
              py::kw_only(), py::arg_v("shadeType", ShadeArg{defaults.shadeType}, "SHADE_GOURAUD"),
@@ -374,9 +376,11 @@ PYBIND11_MODULE(opencv_shading, m) {
              py::arg_v("textureInterpolation", defaults.textureInterpolation,
                        "cv2.INTER_LINEAR"),
              py::arg_v("textureBorder", defaults.textureBorder, "cv2.BORDER_REPLICATE"),
+             py::arg("clear") = defaults.clear, py::arg("background") = py::make_tuple(0, 0, 0),
              "Defaults: Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit: vertex "
              "colours as given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16, "
-             "textures sampled bilinearly with the border replicated.")
+             "textures sampled bilinearly with the border replicated, no clear (background "
+             "black).")
         .def_property(
             "shadeType", [](const sh::RenderSettings& s) { return s.shadeType; },
             [](sh::RenderSettings& s, ShadeArg v) { s.shadeType = v.value; },
@@ -405,6 +409,18 @@ PYBIND11_MODULE(opencv_shading, m) {
                        "drawTexturedMesh3d: cv2.INTER_LINEAR or cv2.INTER_NEAREST.")
         .def_readwrite("textureBorder", &sh::RenderSettings::textureBorder,
                        "drawTexturedMesh3d: cv2.BORDER_* (as cv2.remap's borderMode).")
+        .def_readwrite("clear", &sh::RenderSettings::clear,
+                       "Start a new frame: the canvas cleared to background and a given "
+                       "depthBuffer to +inf, band by band as they are drawn (no separate pass).")
+        .def_property(
+            "background",
+            [](const sh::RenderSettings& s) {
+                return tuple3(s.background[0], s.background[1], s.background[2]);
+            },
+            [](sh::RenderSettings& s, const py::object& v) {
+                s.background = toScalar(v, "background");
+            },
+            "The colour clear sets, in the canvas's units (RGB).")
         .def("__repr__", [](const sh::RenderSettings& s) {
             std::string lights;
             for (const sh::PointLight& l : s.lights)
@@ -419,7 +435,9 @@ PYBIND11_MODULE(opencv_shading, m) {
                    reprNumber(s.ka) + ", kd=" + reprNumber(s.kd) + ", ks=" + reprNumber(s.ks) +
                    ", shininess=" + reprNumber(s.shininess) +
                    ", textureInterpolation=" + std::to_string(s.textureInterpolation) +
-                   ", textureBorder=" + std::to_string(s.textureBorder) + ")";
+                   ", textureBorder=" + std::to_string(s.textureBorder) +
+                   ", clear=" + (s.clear ? "True" : "False") + ", background=" +
+                   reprTuple(s.background[0], s.background[1], s.background[2]) + ")";
         });
 
     m.def(

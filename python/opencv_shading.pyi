@@ -48,8 +48,10 @@ class RenderSettings:
 
     Defaults: Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit: vertex colours as
     given), ambient (1, 1, 1), ka 0.2, kd 0.7, ks 0.5, shininess 16, textures (for
-    drawTexturedMesh3d) sampled with cv2.INTER_LINEAR and cv2.BORDER_REPLICATE. `lights`
-    returns a copy: assign a new list to change it.
+    drawTexturedMesh3d) sampled with cv2.INTER_LINEAR and cv2.BORDER_REPLICATE, no clear.
+    `lights` returns a copy: assign a new list to change it. `clear` starts a new frame: the
+    canvas is cleared to `background` (canvas units) and a given depthBuffer to +inf, band by
+    band as they are drawn, as setting them first would.
     """
     shadeType: int  # assignable from an int or "flat" / "gouraud" / "phong"
     visibility: int
@@ -63,12 +65,15 @@ class RenderSettings:
     shininess: float
     textureInterpolation: int
     textureBorder: int
+    clear: bool
+    background: Tuple[float, float, float]  # assignable from 1 to 4 numbers
 
     def __init__(self, *, shadeType: ShadeType = ..., visibility: int = ...,
                  cullMode: int = ..., zNear: float = 1e-3, lights: Sequence[PointLight] = (),
                  ambient: Vec3 = (1, 1, 1), ka: float = 0.2, kd: float = 0.7, ks: float = 0.5,
                  shininess: float = 16, textureInterpolation: int = ...,
-                 textureBorder: int = ...) -> None: ...
+                 textureBorder: int = ..., clear: bool = False,
+                 background: Union[float, Sequence[float]] = (0, 0, 0)) -> None: ...
 
 
 def flats(canvas: Canvas, vertices: ArrayLike, vcolors: ArrayLike) -> Canvas:

@@ -514,6 +514,68 @@ TEST(DrawMesh3d, GivenNormalsAreNormalizedAtAnyThreadCount)
     setNumThreads(threads);
 }
 
+// settings.clear gives exactly the image, depth and ids of clearing first (canvas.setTo(background),
+// depthBuffer.setTo(+inf)) and drawing over: every shading and visibility, both canvas types, a
+// given and a created depth buffer, an ROI (nothing outside it touched), few faces or many, an
+// empty mesh, and a canvas big enough (over 16 MB) for the painter's bands to be streamed.
+TEST(DrawMesh3d, ClearEqualsClearingFirst)
+{
+    std::mt19937 rng(23);
+    struct Scene {
+        int vertices, faces;
+        Size size;
+    };
+    for (const Scene& scene : {Scene{40, 30, Size(256, 200)}, Scene{1000, 1500, Size(256, 200)},
+                               Scene{0, 0, Size(64, 48)}, Scene{1000, 1500, Size(1200, 1200)}}) {
+        std::vector<Vec3d> v, c;
+        std::vector<Vec3i> f;
+        if (scene.vertices > 0)
+            randomMesh(rng, scene.vertices, scene.faces, v, f, c);
+        const Cam cam(0.6 * scene.size.width, 0.5 * scene.size.width, 0.5 * scene.size.height);
+        const bool big = scene.size.width > 1000;
+        for (int type : {CV_32FC3, CV_8UC3})
+            for (int shade : {SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG})
+                for (int vis : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER})
+                    for (bool givenDepth : {true, false}) {
+                        if (big && (type != CV_32FC3 || vis != VISIBILITY_PAINTER || !givenDepth))
+                            continue;  // the big canvas is for the streamed painter's bands
+                        RenderSettings s;
+                        s.shadeType = shade;
+                        s.visibility = vis;
+                        s.lights = {PointLight(Point3d(0, -3, 0), Vec3d(1, 0.9, 0.8))};
+                        s.background = type == CV_8UC3 ? Scalar(20, 200, 90) : Scalar(0.1, 0.8, 0.35);
+                        // The canvas is an ROI of a bigger image, whose border must stay as it is.
+                        const Rect roi(3, 2, scene.size.width, scene.size.height);
+                        const Size outer(scene.size.width + 5, scene.size.height + 4);
+                        const Mat garbage = shading_test::sentinelCanvas(outer, type);
+                        const Mat staleDepth(scene.size, CV_32FC1, Scalar(0.5));
+                        Mat expected = garbage.clone(), expectedDepth, expectedIds;
+                        expected(roi).setTo(s.background);
+                        if (givenDepth)
+                            expectedDepth = Mat(scene.size, CV_32FC1,
+                                                Scalar(std::numeric_limits<float>::infinity()));
+                        Mat expectedCanvas = expected(roi);
+                        drawMesh3d(expectedCanvas, v, f, c, cam.K, cam.rvec, cam.tvec, s,
+                                   noArray(), expectedDepth, expectedIds);
+                        s.clear = true;
+                        Mat img = garbage.clone(), depth, ids;
+                        if (givenDepth)
+                            depth = staleDepth.clone();
+                        Mat canvas = img(roi);
+                        drawMesh3d(canvas, v, f, c, cam.K, cam.rvec, cam.tvec, s, noArray(),
+                                   depth, ids);
+                        const std::string what = std::to_string(scene.faces) + " faces, type " +
+                                                 std::to_string(type) + ", shade " +
+                                                 std::to_string(shade) + ", visibility " +
+                                                 std::to_string(vis) +
+                                                 (givenDepth ? ", depth given" : "");
+                        EXPECT_EQ(shading_test::maxAbsDiff(img, expected), 0) << what;
+                        EXPECT_EQ(cv::norm(depth, expectedDepth, NORM_INF), 0) << what;
+                        EXPECT_EQ(cv::norm(ids, expectedIds, NORM_INF), 0) << what;
+                    }
+    }
+}
+
 TEST(DrawMesh3d, NonFiniteVerticesSkipTheirFaces)
 {
     const Cam cam;
@@ -605,6 +667,9 @@ TEST(DrawMesh3dErrors, EveryBadArgumentLeavesCanvasAndDepthUntouched)
     cases.back().s.kd = INFINITY;
     cases.push_back(base("ambient NaN", "settings.ambient"));
     cases.back().s.ambient = Vec3d(0, NAN, 0);
+    cases.push_back(base("background inf", "settings.background"));
+    cases.back().s.clear = true;
+    cases.back().s.background = Scalar(0, 0, INFINITY);
     cases.push_back(base("light NaN", "settings.lights[1]"));
     cases.back().s.lights = {PointLight(), PointLight(Point3d(0, NAN, 0), Vec3d(1, 1, 1))};
     cases.push_back(base("depth size", "depthBuffer"));

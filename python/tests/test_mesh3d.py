@@ -39,7 +39,7 @@ def test_render_settings_defaults():
     assert repr(s) == ("RenderSettings(shadeType=SHADE_GOURAUD, visibility=VISIBILITY_ZBUFFER, "
                        "cullMode=CULL_NONE, zNear=0.001, lights=[], ambient=(1.0, 1.0, 1.0), "
                        "ka=0.2, kd=0.7, ks=0.5, shininess=16.0, textureInterpolation=1, "
-                       "textureBorder=1)")
+                       "textureBorder=1, clear=False, background=(0.0, 0.0, 0.0))")
 
 
 def test_render_settings_keywords_and_attributes():
@@ -129,6 +129,29 @@ def test_draw_mesh3d_depth_buffer_in_place_composites():
                              sh.RenderSettings(), None, depth)
     assert d2 is depth
     assert np.array_equal(two, one) and np.array_equal(depth, d_one)
+
+
+@pytest.mark.parametrize("visibility", ["VISIBILITY_ZBUFFER", "VISIBILITY_PAINTER"])
+def test_draw_mesh3d_clear_equals_clearing_first(visibility):
+    verts, faces, colors, rvec, tvec = scene()
+    settings = sh.RenderSettings(shadeType="phong", lights=[sh.PointLight((3, 3, 6))],
+                                 visibility=getattr(sh, visibility))
+    expected = np.full((120, 160, 3), 0.25, np.float32)
+    expected_depth = np.full((120, 160), np.inf, np.float32)
+    sh.drawMesh3d(expected, verts, faces, colors, K, rvec, tvec, settings, None, expected_depth)
+    settings.clear = True
+    settings.background = 0.25
+    assert settings.clear and settings.background == (0.25, 0.25, 0.25)
+    canvas = np.full((120, 160, 3), -1, np.float32)  # stale content, all replaced
+    depth = np.full((120, 160), 0.5, np.float32)     # a stale buffer that would hide everything
+    _, d, ids = sh.drawMesh3d(canvas, verts, faces, colors, K, rvec, tvec, settings, None, depth)
+    assert d is depth
+    assert np.array_equal(canvas, expected) and np.array_equal(depth, expected_depth)
+    assert (ids >= 0).any() and (canvas[ids < 0] == 0.25).all()
+    with pytest.raises(sh.error, match="settings.background"):
+        sh.drawMesh3d(canvas, verts, faces, colors, K, rvec, tvec,
+                      sh.RenderSettings(clear=True, background=(0, np.nan, 0)))
+    assert np.array_equal(canvas, expected)
 
 
 def test_draw_mesh3d_view_and_normals():

@@ -190,6 +190,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             settings.lights.emplace_back(
                 cv::Point3d(pickCoordinate(in, 20), pickCoordinate(in, 20), pickCoordinate(in, 20)),
                 cv::Vec3d(in.ConsumeProbability<double>(), in.ConsumeProbability<double>(), 1));
+        if (in.ConsumeIntegralInRange(0, 3) == 0) {  // a cleared frame, rarely a bad background
+            settings.clear = true;
+            settings.background = cv::Scalar(in.ConsumeProbability<double>() * 255,
+                                             in.ConsumeIntegralInRange(0, 20) == 0
+                                                 ? pickCoordinate(in, 1000)
+                                                 : in.ConsumeProbability<double>(),
+                                             1);
+        }
         if (in.ConsumeBool()) {
             normals.create(in.ConsumeIntegralInRange(0, 10) == 0 ? 2 : int(verts3d.size()), 3, CV_64F);
             for (int i = 0; i < int(normals.total()); i++)

@@ -3,9 +3,11 @@
 // perf_render3d.hpp: the 3D benchmarks of opencv_shading_perf, cv::shading::drawMesh3d on the
 // scenes of makeScene3d (perf_scenes.hpp), lit by three point lights:
 //
-//   drawMesh3d/SCENE/SHADE/VIS/threads:N  clear the CV_32FC3 canvas to white (and, for the
-//                                         z-buffer, the CV_32F depth buffer to +inf), draw
-//   clear/SCENE/threads:1                 the clears alone: the floor
+//   drawMesh3d/SCENE/SHADE/VIS/threads:N  draw a frame: the CV_32FC3 canvas cleared to white
+//                                         (and, for the z-buffer, the CV_32F depth buffer to
+//                                         +inf) by the call itself (RenderSettings::clear, the
+//                                         bands cleared as they are drawn), then the mesh
+//   clear/SCENE/threads:1                 clearing both with setTo, alone: the floor
 //
 //   drawTexturedMesh3d/SCENE/SHADE/VIS/threads:N  the same with the scene's textured variant
 //                                         (makeTexturedScene3d: a 512 x 512 texture, bilinear,
@@ -69,14 +71,27 @@ inline void clearCanvas3d(cv::Mat& canvas, cv::Mat* depth, cv::Size size)
     }
 }
 
-/** One frame of drawMesh3d: clears, then draws `sc` with `shade` and `visibility`. The z-buffer
-uses `depth` (reset here); painter's needs none. `faceIds`, if given, receives the face ids. */
+/** A frame's start: `canvas` (and for the z-buffer `depth`) allocated, and `settings` told to
+clear them to white (and +inf) as the call draws (RenderSettings::clear). */
+inline void startFrame3d(cv::Size size, bool zbuffer, cv::Mat& canvas, cv::Mat& depth,
+                         cv::shading::RenderSettings& settings)
+{
+    canvas.create(size, CV_32FC3);
+    if (zbuffer)
+        depth.create(size, CV_32F);
+    settings.clear = true;
+    settings.background = cv::Scalar::all(1);
+}
+
+/** One frame of drawMesh3d: draws `sc` with `shade` and `visibility` on a canvas it clears
+(startFrame3d). The z-buffer uses `depth` (cleared by the call); painter's needs none.
+`faceIds`, if given, receives the face ids. */
 inline void drawScene3d(const Scene3d& sc, int shade, int visibility, cv::Mat& canvas,
                         cv::Mat& depth, cv::OutputArray faceIds = cv::noArray())
 {
     const bool zbuffer = visibility == cv::shading::VISIBILITY_ZBUFFER;
-    clearCanvas3d(canvas, zbuffer ? &depth : nullptr, sc.size);
     cv::shading::RenderSettings settings = sc.settings;  // a few vectors: cheap next to a frame
+    startFrame3d(sc.size, zbuffer, canvas, depth, settings);
     settings.shadeType = shade;
     settings.visibility = visibility;
     const Mesh3d& m = sc.mesh;
@@ -117,17 +132,17 @@ inline std::vector<TexturedScene3d> benchmarkTexturedScenes3d()
     return {makeTexturedScene3d("knot3d", 512), makeTexturedScene3d("torus3d", 2048)};
 }
 
-/** One frame of drawTexturedMesh3d: clears, then draws `ts` with `shade` and `visibility`,
-sampling its CV_32FC3 texture (the canvas's units: no conversion per frame) bilinearly with
-BORDER_WRAP. As drawScene3d otherwise. */
+/** One frame of drawTexturedMesh3d: draws `ts` with `shade` and `visibility` on a canvas it
+clears, sampling its CV_32FC3 texture (the canvas's units: no conversion per frame) bilinearly
+with BORDER_WRAP. As drawScene3d otherwise. */
 inline void drawTexturedScene3d(const TexturedScene3d& ts, int shade, int visibility,
                                 cv::Mat& canvas, cv::Mat& depth,
                                 cv::OutputArray faceIds = cv::noArray())
 {
     const Scene3d& sc = ts.scene;
     const bool zbuffer = visibility == cv::shading::VISIBILITY_ZBUFFER;
-    clearCanvas3d(canvas, zbuffer ? &depth : nullptr, sc.size);
     cv::shading::RenderSettings settings = sc.settings;
+    startFrame3d(sc.size, zbuffer, canvas, depth, settings);
     settings.shadeType = shade;
     settings.visibility = visibility;
     settings.textureInterpolation = cv::INTER_LINEAR;

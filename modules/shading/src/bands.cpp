@@ -26,15 +26,23 @@ namespace detail {
 OPENCV_SHADING_ISA_BEGIN
 namespace {
 
+//! The background as the canvas's pixel type, in `storage`; null without one.
+template <typename T>
+const Vec<T, 3>* backgroundAs(const Scalar* background, Vec<T, 3>& storage)
+{
+    if (!background)
+        return nullptr;
+    for (int k = 0; k < 3; k++)
+        storage[k] = saturate_cast<T>((*background)[k]);
+    return &storage;
+}
+
 //! Draws the mesh; with `background`, also sets every pixel no face covers (render()).
 template <typename T>
 void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* background)
 {
     Vec<T, 3> bg;
-    if (background)
-        for (int k = 0; k < 3; k++)
-            bg[k] = saturate_cast<T>((*background)[k]);
-    const Vec<T, 3>* fill = background ? &bg : nullptr;
+    const Vec<T, 3>* fill = backgroundAs(background, bg);
     if (shadeType == SHADE_FLAT) {
         drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
         return;
@@ -174,36 +182,40 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
 }
 
 template <typename T, Surface kSurface>
-void drawSurface(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets, bool zbuffer)
+void drawSurface(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets, bool zbuffer,
+                 const Vec<T, 3>* background)
 {
-    const Vec<T, 3>* const noBackground = nullptr;
     BandOptions options;
     options.depthTested = zbuffer;
     // Per-sample lighting costs more than the bookkeeping: shade each sample once.
     options.deferred = options.frontToBack = litPerSample(kSurface);
     drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, kSurface>{&screen, &targets},
-                    noBackground, options);
+                    background, options);
 }
 
 template <typename T>
 void drawScreenMeshAs(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
-                      bool zbuffer)
+                      bool zbuffer, const Scalar* background)
 {
+    Vec<T, 3> bg;
+    const Vec<T, 3>* fill = backgroundAs(background, bg);
     switch (screen.surface) {
     case Surface::kFlat:
-        return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer, fill);
     case Surface::kGouraud:
-        return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer, fill);
     case Surface::kPhong:
-        return drawSurface<T, Surface::kPhong>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kPhong>(canvas, screen, targets, zbuffer, fill);
     case Surface::kTextured:
-        return drawSurface<T, Surface::kTextured>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kTextured>(canvas, screen, targets, zbuffer, fill);
     case Surface::kTexturedFaceLit:
-        return drawSurface<T, Surface::kTexturedFaceLit>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kTexturedFaceLit>(canvas, screen, targets, zbuffer, fill);
     case Surface::kTexturedVertexLit:
-        return drawSurface<T, Surface::kTexturedVertexLit>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kTexturedVertexLit>(canvas, screen, targets, zbuffer,
+                                                           fill);
     case Surface::kTexturedSampleLit:
-        return drawSurface<T, Surface::kTexturedSampleLit>(canvas, screen, targets, zbuffer);
+        return drawSurface<T, Surface::kTexturedSampleLit>(canvas, screen, targets, zbuffer,
+                                                           fill);
     }
 }
 
@@ -222,12 +234,12 @@ void drawVertexColorMesh(Mat& canvas, const MeshData& mesh, int shadeType,
 }
 
 void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
-                    bool zbuffer)
+                    bool zbuffer, const Scalar* background)
 {
     if (canvas.depth() == CV_8U)
-        drawScreenMeshAs<uchar>(canvas, screen, targets, zbuffer);
+        drawScreenMeshAs<uchar>(canvas, screen, targets, zbuffer, background);
     else
-        drawScreenMeshAs<float>(canvas, screen, targets, zbuffer);
+        drawScreenMeshAs<float>(canvas, screen, targets, zbuffer, background);
 }
 
 }  // namespace OPENCV_SHADING_BANDS_NAMESPACE
@@ -267,13 +279,13 @@ void drawVertexColorMesh(Mat& canvas, const MeshData& mesh, int shadeType,
 }
 
 void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
-                    bool zbuffer)
+                    bool zbuffer, const Scalar* background)
 {
 #if OPENCV_SHADING_HAVE_AVX2
     if (useAvx2.load(std::memory_order_relaxed))
-        return bands_avx2::drawScreenMesh(canvas, screen, targets, zbuffer);
+        return bands_avx2::drawScreenMesh(canvas, screen, targets, zbuffer, background);
 #endif
-    bands_baseline::drawScreenMesh(canvas, screen, targets, zbuffer);
+    bands_baseline::drawScreenMesh(canvas, screen, targets, zbuffer, background);
 }
 #endif  // OPENCV_SHADING_BANDS_AVX2_BUILD
 

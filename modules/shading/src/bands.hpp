@@ -23,9 +23,10 @@ void drawVertexColorMesh(Mat& canvas, const MeshData& mesh, int shadeType,
                          const Scalar* background);
 
 /** Draws drawMesh3d's projected mesh, with the z-buffer (`zbuffer`) or in the painter's order,
-into the canvas and the outputs of `targets`. */
+into the canvas and the outputs of `targets`; with `background`, on a canvas cleared to it (each
+band just before it is drawn). */
 void drawScreenMesh(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
-                    bool zbuffer);
+                    bool zbuffer, const Scalar* background);
 
 /** Which build the functions above use from now on (for tests; the default is the best the
 CPU runs): `build` where the library has it and the CPU runs it, else the baseline. Returns the
@@ -35,11 +36,11 @@ CV_EXPORTS KernelBuild useBandBuild(KernelBuild build);
 //! The builds themselves.
 namespace bands_baseline {
 void drawVertexColorMesh(Mat&, const MeshData&, int, const Scalar*);
-void drawScreenMesh(Mat&, const ScreenMesh&, const DepthTargets&, bool);
+void drawScreenMesh(Mat&, const ScreenMesh&, const DepthTargets&, bool, const Scalar*);
 }  // namespace bands_baseline
 namespace bands_avx2 {
 void drawVertexColorMesh(Mat&, const MeshData&, int, const Scalar*);
-void drawScreenMesh(Mat&, const ScreenMesh&, const DepthTargets&, bool);
+void drawScreenMesh(Mat&, const ScreenMesh&, const DepthTargets&, bool, const Scalar*);
 }  // namespace bands_avx2
 
 }  // namespace detail

@@ -598,8 +598,8 @@ struct BandOptions {
 
 /** Draws `mesh` as the painter's algorithm would (faces by decreasing mean depth, ties in face
 order), each face coloured by the shader `shaders.make(...)` builds for it. With `background`,
-pixels no face covers are set to it (render() needs no separate clear). See BandOptions for the
-z-buffer. */
+pixels no face covers are set to it (render() needs no separate clear; with the z-buffer, each
+band's rows are cleared to it first). See BandOptions for the z-buffer. */
 template <class Shaders, typename T>
 void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                      const Vec<T, 3>* background, const BandOptions& options = BandOptions())
@@ -864,6 +864,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             if constexpr (Shaders::kZBuffer) {
                 if (depthTested) {
                     // Nearest faces first; each tests its samples against (depth, face) kept.
+                    if (background)  // a cleared canvas: the band's rows first
+                        for (int y = y0; y < y1; y++)
+                            fillPixels(reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep),
+                                       0, width, background->val);
                     zbuffer.reset(y1 - y0, width);
                     if (options.deferred)
                         keptWeights.resize(size_t(y1 - y0) * width * 2);

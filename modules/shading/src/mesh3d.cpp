@@ -33,7 +33,8 @@ PointLight::PointLight(const Point3d& position_, const Vec3d& intensity_)
 RenderSettings::RenderSettings()
     : shadeType(SHADE_GOURAUD), visibility(VISIBILITY_ZBUFFER), cullMode(CULL_NONE), zNear(1e-3),
       ambient(1, 1, 1), ka(0.2), kd(0.7), ks(0.5), shininess(16),
-      textureInterpolation(INTER_LINEAR), textureBorder(BORDER_REPLICATE)
+      textureInterpolation(INTER_LINEAR), textureBorder(BORDER_REPLICATE), clear(false),
+      background(0, 0, 0, 0)
 {
 }
 
@@ -131,6 +132,8 @@ void checkSettings(const RenderSettings& s)
                                                   "got %g", m.first, m.second));
     if (!isFinite(s.ambient))
         CV_Error(Error::StsOutOfRange, "settings.ambient: values must be finite");
+    if (!isFinite(Vec3d(s.background[0], s.background[1], s.background[2])))
+        CV_Error(Error::StsOutOfRange, "settings.background: values must be finite");
     for (size_t i = 0; i < s.lights.size(); i++)
         if (!isFinite(Vec3d(s.lights[i].position)) || !isFinite(s.lights[i].intensity))
             CV_Error(Error::StsOutOfRange,
@@ -527,20 +530,22 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     targets.ids = ids.empty() ? nullptr : ids.data;
     targets.idsStep = ids.empty() ? 0 : ids.step[0];
     targets.width = size.width;
-    targets.fillDepth = !depthGiven && !depth.empty();
+    // settings.clear: the given buffer is cleared (+inf) as a created one is, band by band.
+    targets.fillDepth = (!depthGiven || settings.clear) && !depth.empty();
     targets.fillIds = !ids.empty();
     targets.lighting = &lighting;
     const Mat texels = textured ? textureInUnitsOf(tex, canvas.depth()) : Mat();
+    const Scalar* const clearTo = settings.clear ? &settings.background : nullptr;
     if (canvas.depth() == CV_8U) {
         const RemapSampler<uchar> sampler(texels, settings.textureInterpolation,
                                           settings.textureBorder);
         targets.sampler8u = &sampler;
-        drawScreenMesh(canvas, screen, targets, zbuffer);
+        drawScreenMesh(canvas, screen, targets, zbuffer, clearTo);
     } else {
         const RemapSampler<float> sampler(texels, settings.textureInterpolation,
                                           settings.textureBorder);
         targets.sampler32f = &sampler;
-        drawScreenMesh(canvas, screen, targets, zbuffer);
+        drawScreenMesh(canvas, screen, targets, zbuffer, clearTo);
     }
     if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
         screen = ScreenMesh();

@@ -79,7 +79,7 @@ struct CV_EXPORTS_W_SIMPLE PointLight {
 //! How #drawMesh3d shades and which faces it keeps.
 struct CV_EXPORTS_W_SIMPLE RenderSettings {
     //! Gouraud, z-buffer, no culling, zNear 1e-3, no lights (unlit), ambient (1, 1, 1),
-    //! ka 0.2, kd 0.7, ks 0.5, shininess 16; textures bilinear, border replicated.
+    //! ka 0.2, kd 0.7, ks 0.5, shininess 16; textures bilinear, border replicated; no clear.
     CV_WRAP RenderSettings();
     CV_PROP_RW int shadeType;    //!< #SHADE_FLAT, #SHADE_GOURAUD (default) or #SHADE_PHONG
     CV_PROP_RW int visibility;   //!< #VISIBILITY_ZBUFFER (default) or #VISIBILITY_PAINTER
@@ -97,6 +97,14 @@ struct CV_EXPORTS_W_SIMPLE RenderSettings {
     //! #drawTexturedMesh3d: `BORDER_REPLICATE` (default), `BORDER_CONSTANT` (black),
     //! `BORDER_REFLECT`, `BORDER_WRAP` or `BORDER_REFLECT_101`, as `cv::remap`'s.
     CV_PROP_RW int textureBorder;
+    /** Start a new frame (default false: draw over the canvas and test against the depth
+    buffer's content). The image is then the one `canvas.setTo(background)` and, when given,
+    `depthBuffer.setTo(+inf)` before the call would give, but the clearing is done band by
+    band, in parallel, just before each band is drawn, as a GPU's fast clear: no pass of its own
+    over the images. */
+    CV_PROP_RW bool clear;
+    //! The colour #clear sets, in the canvas's units (default black); must be finite.
+    CV_PROP_RW Scalar background;
 };
 
 /** @brief Face and vertex normals of a triangle mesh (seed 004's rule).
@@ -139,7 +147,7 @@ settings.lights. See the group's conventions for every formula. Faces with a non
 are skipped. The result does not depend on the number of threads.
 
 @param canvas Image to draw over, `CV_32FC3` (colours in [0, 1] when lit) or `CV_8UC3` (0..255),
-possibly an ROI. Its content is the background.
+possibly an ROI. Its content is the background (unless settings.clear).
 @param verts3d L vertices in world coordinates (as for #computeNormals).
 @param faces K triangles, each 3 zero-based indices into `verts3d`.
 @param vcolors L vertex colours in the canvas's units.
@@ -150,8 +158,9 @@ nonzero focal lengths.
 @param settings Shading, visibility, culling, near plane, lights and material.
 @param normals L vertex normals (world space), or empty to compute them as #computeNormals does.
 @param depthBuffer Optional in/out, canvas-sized `CV_32FC1`. Empty: created and filled with +inf
-first. Given: #VISIBILITY_ZBUFFER tests against it, so several meshes drawn into one canvas with
-one buffer composite correctly. Either way it ends holding the depth (`Zc`) of every drawn sample.
+first. Given: #VISIBILITY_ZBUFFER tests against it (against +inf with settings.clear), so several
+meshes drawn into one canvas with one buffer composite correctly. Either way it ends holding the
+depth (`Zc`) of every drawn sample.
 @param faceIds Optional output, canvas-sized `CV_32SC1`: the index in `faces` of the face that
 coloured each pixel, -1 elsewhere.
 */
