@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 namespace {
@@ -76,6 +77,33 @@ TEST(DrawTexturedMesh3d, PerspectiveCorrectCoordinatesOnARecedingFloor)
     // Above the horizon of z = 3 (row 133.3) and beside the floor nothing is drawn.
     EXPECT_EQ(canvas.at<Vec3f>(120, 100), Vec3f(-1, -1, -1));
     EXPECT_EQ(canvas.at<Vec3f>(150, 10), Vec3f(-1, -1, -1));
+}
+
+// settings.clear (shared with drawMesh3d): the textured image, depth and ids of clearing first.
+TEST(DrawTexturedMesh3d, ClearEqualsClearingFirst)
+{
+    const Floor floor;
+    for (int shade : {SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG})
+        for (int vis : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER}) {
+            RenderSettings s;
+            s.shadeType = shade;
+            s.visibility = vis;
+            s.lights = {PointLight(Point3d(0, 0, 0), Vec3d(1, 1, 1))};
+            s.background = Scalar(0.2, 0.4, 0.6);
+            Mat expected(200, 200, CV_32FC3, s.background), expectedIds;
+            Mat expectedDepth(200, 200, CV_32FC1, Scalar(std::numeric_limits<float>::infinity()));
+            drawTexturedMesh3d(expected, floor.verts, floor.faces, floor.uv, rampTexture(), kK,
+                               kZero, kZero, s, noArray(), expectedDepth, expectedIds);
+            s.clear = true;
+            Mat canvas(200, 200, CV_32FC3, Scalar::all(-1)), ids;
+            Mat depth(200, 200, CV_32FC1, Scalar(0.5));  // stale: would hide the whole floor
+            drawTexturedMesh3d(canvas, floor.verts, floor.faces, floor.uv, rampTexture(), kK,
+                               kZero, kZero, s, noArray(), depth, ids);
+            EXPECT_EQ(shading_test::maxAbsDiff(canvas, expected), 0) << shade << " " << vis;
+            EXPECT_EQ(cv::norm(depth, expectedDepth, NORM_INF), 0) << shade << " " << vis;
+            EXPECT_EQ(cv::norm(ids, expectedIds, NORM_INF), 0) << shade << " " << vis;
+            EXPECT_EQ(canvas.at<Vec3f>(120, 100), Vec3f(0.2f, 0.4f, 0.6f));  // above the horizon
+        }
 }
 
 TEST(DrawTexturedMesh3d, FrontoParallelFaceEqualsTexturedTriangles)
