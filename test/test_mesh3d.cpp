@@ -722,35 +722,29 @@ TEST(DrawMesh3dErrors, BadValuesFoundInEverySliceOfABigMesh)
                      i % (vertexCount - 201) + 200);
     RenderSettings s;
     s.lights = {PointLight(Point3d(0, 0, 0), Vec3d(1, 1, 1))};
-    for (int at : {0, 50000, 3 * faceCount - 1}) {
-        std::vector<Vec3i> bad = f;
-        bad[at / 3][at % 3] = at % 2 ? -1 : vertexCount;
+    // The call must raise an error containing `expected` and leave the canvas as it was.
+    auto expectRejected = [&](const std::vector<Vec3i>& faces, const std::vector<Vec3f>& normals,
+                              const std::string& expected) {
         Mat canvas(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75));
         const Mat before = canvas.clone();
         try {
-            drawMesh3d(canvas, v, bad, c, cam.K, cam.rvec, cam.tvec, s, n);
-            ADD_FAILURE() << "face index " << at << ": no exception";
+            drawMesh3d(canvas, v, faces, c, cam.K, cam.rvec, cam.tvec, s, normals);
+            ADD_FAILURE() << expected << ": no exception";
         } catch (const cv::Exception& e) {
-            EXPECT_NE(e.err.find("faces: face " + std::to_string(at / 3) + " "), std::string::npos)
-                << e.err;
+            EXPECT_NE(e.err.find(expected), std::string::npos) << e.err;
         }
-        EXPECT_EQ(shading_test::maxAbsDiff(canvas, before), 0);
+        EXPECT_EQ(shading_test::maxAbsDiff(canvas, before), 0) << expected;
+    };
+    for (int at : {0, 50000, 3 * faceCount - 1}) {
+        std::vector<Vec3i> bad = f;
+        bad[at / 3][at % 3] = at % 2 ? -1 : vertexCount;
+        expectRejected(bad, n, "faces: face " + std::to_string(at / 3) + " ");
     }
     for (int at : {1, 60001, 3 * vertexCount - 1}) {
         std::vector<Vec3f> bad = n;
         bad[at / 3][at % 3] = at % 2 ? std::numeric_limits<float>::infinity()
                                      : std::numeric_limits<float>::quiet_NaN();
-        Mat canvas(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75));
-        const Mat before = canvas.clone();
-        try {
-            drawMesh3d(canvas, v, f, c, cam.K, cam.rvec, cam.tvec, s, bad);
-            ADD_FAILURE() << "normal value " << at << ": no exception";
-        } catch (const cv::Exception& e) {
-            EXPECT_NE(e.err.find("normals: normal " + std::to_string(at / 3) + " "),
-                      std::string::npos)
-                << e.err;
-        }
-        EXPECT_EQ(shading_test::maxAbsDiff(canvas, before), 0);
+        expectRejected(f, bad, "normals: normal " + std::to_string(at / 3) + " ");
     }
     // And with good values the same mesh draws.
     Mat canvas(200, 200, CV_32FC3, Scalar(0.25, 0.5, 0.75));
