@@ -308,8 +308,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.invZ.resize(outVertices);
     screen.attributes.resize(size_t(outVertices) * stride);
 
-    // Raw pointers: the loop stores through several of them, and the vectors' own pointers
-    // would be reloaded after each store.
+    // The outputs, sized above: each chunk writes the pieces of its own faces.
     Vec3i* const outFace = screen.mesh.faces.data();
     int* const source = screen.source.data();
     double* const faceDepth = screen.mesh.faceDepth.data();
@@ -407,9 +406,11 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 lightFace(f, first, nextFace);
             } else if (surface == Surface::kFlat) {  // unlit: the mean as the 2D flats() takes it
                 const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
+                float mean[3];
+                for (int j = 0; j < 3; j++)
+                    mean[j] = float((c0[j] + c1[j] + c2[j]) / 3.0);
                 for (int k = first; k < nextFace; k++)
-                    for (int j = 0; j < 3; j++)
-                        faceValues[size_t(k) * 3 + j] = float((c0[j] + c1[j] + c2[j]) / 3.0);
+                    std::copy(mean, mean + 3, faceValues + size_t(k) * 3);
             }
         }
         lightStaged();
