@@ -479,6 +479,48 @@ TEST(DrawMesh3d, SameImageForAnyThreadCount)
     setNumThreads(threads);
 }
 
+// A mesh wholly in front of the near plane skips the clipping passes: its faces are the caller's
+// and their sort keys come from the vertices. One unused vertex behind the camera sends the same
+// faces through the clipping passes instead; both must give the same image, depth and ids, lit
+// and unlit, at both canvas depths.
+TEST(DrawMesh3d, UnusedVertexBehindTheCameraChangesNothing)
+{
+    std::mt19937 rng(11);
+    const Cam cam(150, 128, 128);
+    std::vector<Vec3d> v, c;
+    std::vector<Vec3i> f;
+    randomMesh(rng, 600, 900, v, f, c);
+    std::vector<Vec3d> vBehind = v, cBehind = c;
+    vBehind.emplace_back(0.5, 0.5, -3);
+    cBehind.emplace_back(1, 0, 0);
+    for (int type : {CV_32FC3, CV_8UC3})
+        for (bool lit : {false, true})
+            for (int shade : {SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG})
+                for (int vis : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER}) {
+                    RenderSettings s;
+                    s.shadeType = shade;
+                    s.visibility = vis;
+                    if (lit)
+                        s.lights = {PointLight(Point3d(0, -3, 0), Vec3d(1, 0.8, 0.6))};
+                    const double scale = type == CV_8UC3 ? 255 : 1;
+                    std::vector<Vec3d> c1 = c, c2 = cBehind;
+                    for (Vec3d& x : c1)
+                        x *= scale;
+                    for (Vec3d& x : c2)
+                        x *= scale;
+                    Mat depth1, ids1, depth2, ids2;
+                    const Mat a = draw(v, f, c1, cam, s, &depth1, &ids1, Size(256, 256), type);
+                    const Mat b =
+                        draw(vBehind, f, c2, cam, s, &depth2, &ids2, Size(256, 256), type);
+                    const std::string where = format("type %d lit %d shade %d vis %d", type, lit,
+                                                     shade, vis);
+                    EXPECT_GT(countNonZero(ids1 >= 0), 10000) << where;
+                    EXPECT_EQ(shading_test::maxAbsDiff(a, b), 0) << where;
+                    EXPECT_EQ(cv::norm(depth1, depth2, NORM_INF), 0) << where;
+                    EXPECT_EQ(cv::norm(ids1, ids2, NORM_INF), 0) << where;
+                }
+}
+
 // Given normals are used as unit normals: scaling them changes nothing. A mesh big enough for the
 // normals to be normalized in parallel chunks, at several thread counts.
 TEST(DrawMesh3d, GivenNormalsAreNormalizedAtAnyThreadCount)

@@ -94,7 +94,7 @@ struct SurfaceShaders {
 
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
     {
-        Shader s(t, targets, screen->source[face]);
+        Shader s(t, targets, screen->sourceOf(face));
         for (int i = 0; i < 3; i++) {
             const int v = f[order[i]];
             s.invZ[i] = screen->invZ[v];
@@ -145,7 +145,7 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
             const int x = word * 64 + __builtin_ctzll(bits);
             const int face = kept[x];
             if (idRow)
-                idRow[x] = screen.source[face];
+                idRow[x] = screen.sourceOf(face);
             if (face != lastFace) {
                 const Vec3i& f = screen.mesh.faces[face];
                 for (int i = 0; i < 3; i++) {

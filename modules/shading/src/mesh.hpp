@@ -398,7 +398,7 @@ struct MeshData {
     std::vector<Point2d> vertices;
     std::vector<Vec3i> faces;   //!< indices checked against vertices
     std::vector<Vec3d> colors;  //!< one per vertex
-    std::vector<double> depth;  //!< one per vertex, or empty: draw in face order
+    std::vector<double> depth;  //!< one per vertex, or empty: draw in face order (or by faceDepth)
     //! One per face, or empty: the painter's key of each face instead of its vertices' mean
     //! depth (3D: the mean camera depth of the face a clipped piece comes from).
     std::vector<double> faceDepth;
@@ -417,7 +417,7 @@ OPENCV_SHADING_ISA_BEGIN
 fresh ones would be fresh pages, and their page faults cost more than drawing a small mesh. */
 struct MeshWorkspace {
     std::vector<FixedPoint> snapped;  //!< per vertex
-    std::vector<double> depths;       //!< per face: its vertices' mean depth (not faceDepth)
+    std::vector<double> depths;       //!< per face: its key from its vertices' depths
     std::vector<SampleBox> boxes;     //!< per face; no rows: culled
     std::vector<uint64_t> binned;     //!< per face and band it crosses
 
@@ -584,7 +584,8 @@ constexpr double kBandCostPerFace = 16;
 struct BandOptions {
     /** 3D z-buffer: a sample takes the face of smallest (depth, face index) that is nearer than
     the depth buffer's value (what drawing in face order with a strict test gives), whatever
-    order faces come in. Faces come nearest first (their sort key: their nearest vertex), each
+    order faces come in. Faces come nearest first (their sort key: the mesh's faceDepth, else
+    their nearest vertex's depth, a bound no sample of the face is nearer than), each
     sample keeping its face (ZBufferBlocks), and a face whose sample box is covered by nearer
     samples already is skipped before setup. */
     bool depthTested = false;
@@ -632,8 +633,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
     // its area; per chunk, the range of the depths (for quantizing them below) and the faces and
     // area each band receives (for binning).
-    // Each face's sort key: the given faceDepth, or its vertices' mean depth, computed here
-    // (culled faces keep stale means, never used).
+    // Each face's sort key: the given faceDepth, or from its vertices' depths, computed here:
+    // their mean (the painter's order) or, depth-tested, the nearest (culled faces keep stale
+    // keys, never used).
     std::vector<double>& depths = work.depths;
     depths.resize(byDepth && !byFaceDepth ? faceCount : 0);
     const double* const faceKeys = byFaceDepth ? mesh.faceDepth.data() : depths.data();
@@ -666,16 +668,22 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 SampleBox& box = boxes[i];
                 box.rowBegin = box.rowEnd = 0;  // culled
                 if (byDepth) {
-                    const double mean =
-                        byFaceDepth ? mesh.faceDepth[i]
-                                    : (mesh.depth[f[0]] + mesh.depth[f[1]] + mesh.depth[f[2]]) / 3.0;
-                    if (std::isnan(mean))
+                    double key;
+                    if (byFaceDepth) {
+                        key = mesh.faceDepth[i];
+                    } else {
+                        const double d0 = mesh.depth[f[0]], d1 = mesh.depth[f[1]],
+                                     d2 = mesh.depth[f[2]];
+                        key = (d0 + d1 + d2) / 3.0;  // NaN if any is
+                        if (depthTested && !std::isnan(key))
+                            key = std::min({d0, d1, d2});
+                        depths[i] = key;
+                    }
+                    if (std::isnan(key))
                         continue;  // no place in the order: not drawn
-                    if (!byFaceDepth)
-                        depths[i] = mean;
-                    if (std::abs(mean) < inf) {
-                        lo = std::min(lo, mean);
-                        hi = std::max(hi, mean);
+                    if (std::abs(key) < inf) {
+                        lo = std::min(lo, key);
+                        hi = std::max(hi, key);
                     }
                 }
                 const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};

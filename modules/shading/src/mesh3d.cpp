@@ -206,6 +206,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     // Normals are used as unit normals (one-sided, as given), normalized where they are read.
     const bool litVertices =
         surface == Surface::kTexturedVertexLit || (surface == Surface::kGouraud && lit);
+    std::atomic<bool> allInFront(true);  // and, textured, every texture coordinate usable
     forChunks(vertexCount, chunkSizeFor(vertexCount, 4096), [&](int begin, int end) {
         if (litVertices) {
             LightBlock block;
@@ -228,11 +229,13 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                         screen.attributes[size_t(b + j) * stride + first + k] = block.out[k][j];
             }
         }
+        bool chunkInFront = true;
         for (int i = begin; i < end; i++) {
             const Vec3d c = cam.toCamera(in.verts[i]);
             const bool finite = isFinite(c);
             cameraZ[i] = finite ? c[2] : nan;
             const bool front = finite && c[2] >= zNear;
+            chunkInFront &= front && (!textured || usableTexCoord(in.texCoords[i]));
             side[i] = !finite ? kNotFinite : front ? kInFront : kBehind;
             projected[i] = front ? cam.project(c) : Point2d(nan, nan);
             screen.invZ[i] = 1.0 / c[2];
@@ -251,18 +254,26 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                     std::copy(in.colors[i].val, in.colors[i].val + 3, a + 6);
             }
         }
+        if (!chunkInFront)
+            allInFront.store(false, std::memory_order_relaxed);
     });
 
     timer.mark("vertices");
+    // A mesh wholly in front of the near plane, without culling: every face is drawn whole. The
+    // faces are then the caller's, and the band pass takes their sort keys from the vertices'
+    // camera z (the painter's mean, the z-buffer's nearest): the faces' passes below are skipped,
+    // but for lighting flat faces.
+    const bool whole = allInFront && settings.cullMode == CULL_NONE;
     // Faces, in two parallel passes over chunks: what each face becomes (culled, whole, or cut
     // into one or two triangles with two new vertices), then, at offsets from prefix sums, the
     // faces and new vertices themselves. Face order (and so the tie order) is kept.
     enum : uint8_t { kSkip = 0, kWhole = 1, kCutOne = 2, kCutTwo = 3 };  // vertices behind
-    std::vector<uint8_t> kind(faceCount);
+    std::vector<uint8_t> kind(whole ? 0 : faceCount);
     const int faceChunk = chunkSizeFor(faceCount, 4096);
     const int chunks = (faceCount + faceChunk - 1) / faceChunk;
     std::vector<int> chunkFaces(chunks + 1, 0), chunkVertices(chunks + 1, 0);
-    forChunks(faceCount, faceChunk, [&](int begin, int end) {
+    // (Nothing to classify for a whole mesh: no chunks.)
+    forChunks(whole ? 0 : faceCount, faceChunk, [&](int begin, int end) {
         int faces = 0, vertices = 0;
         for (int i = begin; i < end; i++) {
             const Vec3i& f = in.faces[i];
@@ -293,10 +304,12 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         chunkFaces[c + 1] += chunkFaces[c];
         chunkVertices[c + 1] += chunkVertices[c];
     }
-    const int outFaces = chunkFaces[chunks], outVertices = vertexCount + chunkVertices[chunks];
-    screen.mesh.faces.resize(outFaces);
-    screen.source.resize(outFaces);
-    screen.mesh.faceDepth.resize(outFaces);
+    const int outFaces = whole ? faceCount : chunkFaces[chunks];
+    const int outVertices = vertexCount + chunkVertices[chunks];
+    screen.mesh.faces.resize(whole ? 0 : outFaces);  // whole: the caller's, moved in below
+    screen.source.resize(whole ? 0 : outFaces);
+    screen.mesh.faceDepth.resize(whole ? 0 : outFaces);
+    screen.mesh.depth.clear();
     // Flat: per output face its colour, or when textured and lit its D and S.
     const int faceStride = surface == Surface::kFlat              ? 3
                            : surface == Surface::kTexturedFaceLit ? 6
@@ -314,8 +327,8 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     double* const faceDepth = screen.mesh.faceDepth.data();
     const double* const invZ = screen.invZ.data();
     float* const faceValues = screen.faceValues.data();
-    forChunks(faceCount, faceChunk, [&](int begin, int end) {
-        int nextFace = chunkFaces[begin / faceChunk];
+    forChunks(whole && faceStride == 0 ? 0 : faceCount, faceChunk, [&](int begin, int end) {
+        int nextFace = whole ? begin : chunkFaces[begin / faceChunk];
         int nextVertex = vertexCount + chunkVertices[begin / faceChunk];
         // The point where edge front -> back meets the near plane, as a new vertex. Always
         // computed from the vertex in front, so faces sharing the edge share the point exactly.
@@ -368,14 +381,15 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 lightStaged();
         };
         for (int i = begin; i < end; i++) {
-            if (kind[i] == kSkip)
+            const uint8_t faceKind = whole ? uint8_t(kWhole) : kind[i];
+            if (faceKind == kSkip)
                 continue;
             const Vec3i& f = in.faces[i];
             const int first = nextFace;
             // Painter's: the face's mean depth; z-buffer: each piece's nearest vertex, the order
             // that lets nearer faces hide farther ones before their setup.
             const double depth =
-                painter ? (cameraZ[f[0]] + cameraZ[f[1]] + cameraZ[f[2]]) / 3.0 : 0;
+                painter && !whole ? (cameraZ[f[0]] + cameraZ[f[1]] + cameraZ[f[2]]) / 3.0 : 0;
             auto emit = [&](int v0, int v1, int v2) {
                 outFace[nextFace] = Vec3i(v0, v1, v2);
                 source[nextFace] = i;
@@ -383,12 +397,14 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                     painter ? depth : 1.0 / std::max(std::max(invZ[v0], invZ[v1]), invZ[v2]);
                 nextFace++;
             };
-            if (kind[i] == kWhole) {
+            if (whole) {
+                nextFace++;  // face i as the caller gave it
+            } else if (faceKind == kWhole) {
                 emit(f[0], f[1], f[2]);
             } else {
                 // Rotate so that f[r] is the vertex alone on its side of the plane; rotation
                 // keeps the winding.
-                const bool aloneInFront = kind[i] == kCutTwo;
+                const bool aloneInFront = faceKind == kCutTwo;
                 int r = 0;
                 while ((side[f[r]] == kBehind) == aloneInFront)
                     r++;
@@ -415,6 +431,10 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         }
         lightStaged();
     });
+    if (whole) {
+        screen.mesh.faces.swap(in.faces);  // in.faces is read afresh by the next call
+        screen.mesh.depth.swap(cameraZ);
+    }
 }
 
 }  // namespace

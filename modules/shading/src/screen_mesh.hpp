@@ -18,16 +18,21 @@ namespace detail {
 /** The mesh as the band pass draws it: projected, clipped triangles, and per vertex 1 / Zc and
 the surface's attributes (interpolated perspective-correctly by SurfaceShader). */
 struct ScreenMesh {
-    MeshData mesh;                   //!< projected vertices and faces; faceDepth for painter's
+    //! Projected vertices and faces; the sort keys as faceDepth, or (no face clipped) per
+    //! vertex as depth, the camera z.
+    MeshData mesh;
     std::vector<double> invZ;        //!< per vertex
     std::vector<double> attributes;  //!< per vertex, `stride` values
     Surface surface = Surface::kFlat;
     int stride = 0;                  //!< attributeCount(surface)
-    std::vector<int> source;         //!< per face: its index in the caller's faces
+    //! Per face: its index in the caller's faces; empty when the faces are the caller's.
+    std::vector<int> source;
     //! Per face, faceStride values: kFlat its colour (canvas units, 3), kTexturedFaceLit its D
     //! and S (6); empty for the other surfaces.
     std::vector<float> faceValues;
     int faceStride = 0;
+
+    int sourceOf(int face) const { return source.empty() ? face : source[face]; }
 
     size_t capacityBytes() const
     {
