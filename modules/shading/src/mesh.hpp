@@ -395,7 +395,9 @@ OPENCV_SHADING_ISA_END
 
 /** A mesh as the band pass reads it: normalised and validated at the API edge. */
 struct MeshData {
-    std::vector<Point2d> vertices;
+    std::vector<Point2d> vertices;  //!< unused when `snapped` is given
+    //! The vertices already snapped (snapToGrid), or empty: the band pass snaps `vertices`.
+    std::vector<FixedPoint> snapped;
     std::vector<Vec3i> faces;   //!< indices checked against vertices
     std::vector<Vec3d> colors;  //!< one per vertex
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order (or by faceDepth)
@@ -405,7 +407,8 @@ struct MeshData {
 
     size_t capacityBytes() const
     {
-        return vertices.capacity() * sizeof(Point2d) + faces.capacity() * sizeof(Vec3i) +
+        return vertices.capacity() * sizeof(Point2d) + snapped.capacity() * sizeof(FixedPoint) +
+               faces.capacity() * sizeof(Vec3i) +
                colors.capacity() * sizeof(Vec3d) +
                (depth.capacity() + faceDepth.capacity()) * sizeof(double);
     }
@@ -617,16 +620,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const int bandCount = (size.height + bandRows - 1) / bandRows;
 
     StageTimer timer;
-    // Pass 0, parallel over vertices: snap each once (a vertex is shared by ~6 faces).
-    const int vertexCount = int(mesh.vertices.size());
+    // Pass 0, parallel over vertices: snap each once (a vertex is shared by ~6 faces), unless
+    // the caller did.
     MeshWorkspace& work = MeshWorkspace::ofThisThread();
-    std::vector<FixedPoint>& snapped = work.snapped;
-    snapped.resize(vertexCount);
+    const bool snappedGiven = !mesh.snapped.empty() || mesh.vertices.empty();
+    const int vertexCount = snappedGiven ? 0 : int(mesh.vertices.size());
+    work.snapped.resize(vertexCount);
+    const FixedPoint* const snapped = snappedGiven ? mesh.snapped.data() : work.snapped.data();
     constexpr int kVertexChunk = 2048;
     parallel_for_(Range(0, (vertexCount + kVertexChunk - 1) / kVertexChunk), [&](const Range& r) {
         const int end = std::min(vertexCount, r.end * kVertexChunk);
         for (int i = r.start * kVertexChunk; i < end; i++)
-            snapped[i] = snapToGrid(mesh.vertices[i]);
+            work.snapped[i] = snapToGrid(mesh.vertices[i]);
     });
 
     timer.mark("snap");

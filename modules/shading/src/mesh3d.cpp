@@ -9,6 +9,7 @@
 
 #include "camera.hpp"
 #include "input.hpp"
+#include "raster.hpp"
 #include "bands.hpp"
 #include "shaders3d.hpp"
 
@@ -197,7 +198,9 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     cameraZ.resize(vertexCount);
     std::vector<uint8_t>& side = in.side;
     side.resize(vertexCount);
-    std::vector<Point2d>& projected = screen.mesh.vertices;
+    // Projected straight onto the band pass's subpixel grid: it snaps nothing itself.
+    screen.mesh.vertices.clear();
+    std::vector<FixedPoint>& projected = screen.mesh.snapped;
     projected.resize(vertexCount);
     screen.invZ.resize(vertexCount);
     screen.attributes.resize(size_t(vertexCount) * stride);
@@ -237,7 +240,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             const bool front = finite && c[2] >= zNear;
             chunkInFront &= front && (!textured || usableTexCoord(in.texCoords[i]));
             side[i] = !finite ? kNotFinite : front ? kInFront : kBehind;
-            projected[i] = front ? cam.project(c) : Point2d(nan, nan);
+            projected[i] = front ? snapToGrid(cam.project(c)) : FixedPoint{kInvalidCoordinate, 0};
             screen.invZ[i] = 1.0 / c[2];
             double* a = screen.attributes.data() + size_t(i) * stride;
             if (textured) {
@@ -337,7 +340,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             const double s = (a[2] - zNear) / (a[2] - b[2]);
             const Vec3d c(a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), zNear);
             const int v = nextVertex++;
-            projected[v] = cam.project(c);
+            projected[v] = snapToGrid(cam.project(c));
             screen.invZ[v] = 1.0 / zNear;
             const double* fa = screen.attributes.data() + size_t(front) * stride;
             const double* ba = screen.attributes.data() + size_t(back) * stride;

@@ -26,6 +26,13 @@ and tests, so that both paths stay exact). */
 namespace cv {
 namespace shading {
 namespace detail {
+
+//! A vertex on the subpixel grid (snapToGrid). Outside the ISA namespace: the builds hand
+//! snapped vertices to each other (MeshData::snapped).
+struct FixedPoint {
+    int64_t x, y;
+};
+
 OPENCV_SHADING_ISA_BEGIN
 
 // GCC and Clang provide 128-bit integers; __extension__ keeps -Wpedantic quiet about it.
@@ -37,10 +44,6 @@ constexpr int64_t kSubpixelOne = int64_t(1) << kSubpixelBits;
 //! Largest accepted |coordinate| (2^40 px). With it every setup product fits in 128 bits and
 //! every per-row quantity in 64 bits, so far off-canvas vertices clip exactly.
 constexpr double kMaxCoordinate = 1099511627776.0;
-
-struct FixedPoint {
-    int64_t x, y;
-};
 
 //! Coordinates and canvas sizes below 2^28 subpixels (2^20 px) keep every walker and edge
 //! function quantity within 64 bits.
