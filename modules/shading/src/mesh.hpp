@@ -63,12 +63,13 @@ inline int entryFace(uint64_t entry)
 `keyBits` bits, 16 or 8 (relative to the band's smallest, dropping low bits when the band's keys
 span more), which one 8-bit LSD radix pass per byte sorts; entries with equal narrowed keys may
 still be out of order (refineEqualKeys completes the order). The entries' high words become the
-narrowed keys. */
-inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch,
-                            int keyBits = 16)
+narrowed keys. Returns where the sorted entries are: `items`, or `scratch` after an odd number of
+passes (valid until scratch is next resized; copying them back would cost a pass). */
+inline uint64_t* sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch,
+                                 int keyBits = 16)
 {
     if (n < 2)
-        return;
+        return items;
     uint32_t lo = UINT32_MAX, hi = 0;
     for (size_t i = 0; i < n; i++) {
         const uint32_t key = uint32_t(items[i] >> 32);
@@ -105,8 +106,7 @@ inline void sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& sc
             dst[c[(src[i] >> shift) & 0xff]++] = src[i];
         std::swap(src, dst);
     }
-    if (src != items)
-        std::copy(src, src + n, items);
+    return src;
 }
 
 /** Completes the order of entries sorted by quantized key: within each run of equal quantized
@@ -835,9 +835,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             if (byDepth && depthTested) {
                 // The depth test decides every sample whatever the order: the order only lets
                 // nearer faces hide farther ones before setup, for which 256 levels will do.
-                sortBandEntries(order, orderSize, scratch, 8);
+                order = sortBandEntries(order, orderSize, scratch, 8);
             } else if (byDepth) {
-                sortBandEntries(order, orderSize, scratch);
+                order = sortBandEntries(order, orderSize, scratch);
                 refineEqualKeys(order, orderSize, faceKeys, refineRun);
             }
 
