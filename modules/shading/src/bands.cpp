@@ -65,8 +65,27 @@ struct SurfaceShaders {
     using Shader = SurfaceShader<T, kSurface>;
     static constexpr int kAttributes = attributeCount(kSurface);  //!< per ScreenMesh vertex
     static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
+    //! kFlat: lightFaces() gives make() the colours of lit faces (ScreenMesh::flatLit).
+    static constexpr bool kLightsFaces = kSurface == Surface::kFlat;
     const ScreenMesh* screen;
     const DepthTargets* targets;
+
+    /** Lit flat faces (ScreenMesh::flatLit): the colours of `count` set-up faces (at most
+    kLightBatch), lit together. Without lights, nothing: make() reads ScreenMesh::faceValues. */
+    void lightFaces(const int* faces, int count, float (*colors)[3]) const
+    {
+        const ScreenMesh::FlatLit& lit = screen->flatLit;
+        if (!lit.faces || count == 0)
+            return;
+        alignas(32) float in[9][kLightBatch];
+        alignas(32) float out[6][kLightBatch];
+        for (int j = 0; j < count; j++)
+            stageFace(lit.verts, lit.colors, lit.faces[screen->sourceOf(faces[j])], in, j);
+        targets->lighting->lightRows(false, in, out, count);
+        for (int j = 0; j < count; j++)
+            for (int k = 0; k < 3; k++)
+                colors[j][k] = out[k][j];
+    }
 
     void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
 
@@ -92,7 +111,9 @@ struct SurfaceShaders {
                                           width);
     }
 
-    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face) const
+    //! The face's shader; `litColor`: its colour from lightFaces(), if it lit it.
+    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face,
+                const float* litColor = nullptr) const
     {
         Shader s(t, targets, screen->sourceOf(face));
         for (int i = 0; i < 3; i++) {
@@ -111,7 +132,7 @@ struct SurfaceShaders {
         const float* values = screen->faceValues.data() + size_t(face) * screen->faceStride;
         if constexpr (kSurface == Surface::kFlat)
             for (int k = 0; k < 3; k++)
-                s.color[k] = toChannel<T>(values[k]);
+                s.color[k] = toChannel<T>(screen->flatLit.faces ? litColor[k] : values[k]);
         if constexpr (kSurface == Surface::kTexturedFaceLit)
             for (int k = 0; k < 6; k++)
                 s.faceLight[k] = values[k];

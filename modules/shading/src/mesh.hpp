@@ -471,6 +471,8 @@ template <class ShaderType>
 struct VertexColorShaders {
     using Shader = ShaderType;
     static constexpr bool kZBuffer = false;  //!< no depth-tested drawing (see ZBufferBlocks)
+    //! No colours computed per set-up face (see SurfaceShaders::lightFaces).
+    static constexpr bool kLightsFaces = false;
     const Vec3d* colors;  //!< one per vertex
     //! Every colour is within the Gouraud shader's range (gouraudInRange), checked once.
     bool colorsInRange = false;
@@ -855,6 +857,27 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         shaders.prefetchVertex(corners[i][j]);
                     }
                 int prepared = 0;
+                if constexpr (Shaders::kLightsFaces) {
+                    // The faces that set up, then their colours together (lit in SIMD lanes),
+                    // then their shaders.
+                    TriangleSetup triangles[kBatch];
+                    int vertexOrders[kBatch][3], setUp[kBatch], setUpFaces[kBatch];
+                    for (int i = 0; i < count; i++)
+                        if (setupBoxedTriangle(points[i], boxes[faces[i]], size,
+                                               triangles[prepared], vertexOrders[prepared])) {
+                            setUp[prepared] = i;
+                            setUpFaces[prepared++] = faces[i];
+                        }
+                    float colors[kBatch][3];
+                    shaders.lightFaces(setUpFaces, prepared, colors);
+                    for (int j = 0; j < prepared; j++)
+                        new (&batch[j]) BatchFace{
+                            triangles[j],
+                            shaders.make(triangles[j], vertexOrders[j], corners[setUp[j]],
+                                         setUpFaces[j], colors[j]),
+                            setUpFaces[j]};
+                    return prepared;
+                }
                 for (int i = 0; i < count; i++) {
                     TriangleSetup triangle;
                     int vertexOrder[3];

@@ -43,11 +43,6 @@ using namespace detail;
 
 namespace {
 
-inline Vec3d faceNormal(const Vec3d& v0, const Vec3d& v1, const Vec3d& v2)
-{
-    return unitOrZero((v1 - v0).cross(v2 - v0));
-}
-
 inline bool isFinite(const Vec3d& v)
 {
     return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
@@ -313,13 +308,16 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.source.resize(whole ? 0 : outFaces);
     screen.mesh.faceDepth.resize(whole ? 0 : outFaces);
     screen.mesh.depth.clear();
-    // Flat: per output face its colour, or when textured and lit its D and S.
-    const int faceStride = surface == Surface::kFlat              ? 3
+    // Flat: per output face its colour, or when textured and lit its D and S. Lit flat faces
+    // without a texture are lit by the band pass instead, as it sets them up (ScreenMesh::
+    // flatLit): only faces that cover samples, and with the z-buffer are not hidden before.
+    const bool lazyLit = surface == Surface::kFlat && lit;
+    const int faceStride = surface == Surface::kFlat && !lit      ? 3
                            : surface == Surface::kTexturedFaceLit ? 6
                                                                   : 0;
     screen.faceStride = faceStride;
     screen.faceValues.resize(size_t(outFaces) * faceStride);
-    const bool litFaces = shade == SHADE_FLAT && lit;
+    const bool litFaces = surface == Surface::kTexturedFaceLit;
     projected.resize(outVertices);
     screen.invZ.resize(outVertices);
     screen.attributes.resize(size_t(outVertices) * stride);
@@ -370,15 +368,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             staged = 0;
         };
         auto lightFace = [&](const Vec3i& f, int first, int pieceEnd) {
-            const Vec3d &v0 = in.verts[f[0]], &v1 = in.verts[f[1]], &v2 = in.verts[f[2]];
-            const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
-            for (int k = 0; k < 3; k++) {
-                block.in[k][staged] = float(centroid[k]);
-                block.in[3 + k][staged] = float(n[k]);
-                if (!textured)
-                    block.in[6 + k][staged] = float((in.colors[f[0]][k] + in.colors[f[1]][k] +
-                                                     in.colors[f[2]][k]) / 3.0);
-            }
+            stageFace(in.verts.data(), textured ? nullptr : in.colors.data(), f, block.in, staged);
             firstPiece[staged] = first, endPiece[staged] = pieceEnd;
             if (++staged == kLightBatch)
                 lightStaged();
@@ -423,7 +413,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             }
             if (litFaces) {
                 lightFace(f, first, nextFace);
-            } else if (surface == Surface::kFlat) {  // unlit: the mean as the 2D flats() takes it
+            } else if (surface == Surface::kFlat && !lit) {  // the mean, as the 2D flats() takes it
                 const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
                 float mean[3];
                 for (int j = 0; j < 3; j++)
@@ -438,6 +428,10 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         screen.mesh.faces.swap(in.faces);  // in.faces is read afresh by the next call
         screen.mesh.depth.swap(cameraZ);
     }
+    screen.flatLit = {};
+    if (lazyLit)
+        screen.flatLit = {in.verts.data(), in.colors.data(),
+                          whole ? screen.mesh.faces.data() : in.faces.data()};
 }
 
 }  // namespace

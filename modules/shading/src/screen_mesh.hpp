@@ -31,6 +31,13 @@ struct ScreenMesh {
     //! and S (6); empty for the other surfaces.
     std::vector<float> faceValues;
     int faceStride = 0;
+    /** kFlat with lights: the caller's vertices, colours and faces (indexed by sourceOf), from
+    which the band pass lights each face it sets up (stageFace); null pointers otherwise. */
+    struct FlatLit {
+        const Vec3d* verts = nullptr;
+        const Vec3d* colors = nullptr;
+        const Vec3i* faces = nullptr;
+    } flatLit;
 
     int sourceOf(int face) const { return source.empty() ? face : source[face]; }
 

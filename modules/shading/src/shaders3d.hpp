@@ -171,6 +171,28 @@ inline Vec3d unitOrZero(const Vec3d& v)
     return length > 0 && std::isfinite(length) ? v * (1.0 / length) : Vec3d(0, 0, 0);
 }
 
+//! The unit normal of face v0 v1 v2 by the right-hand rule; zero for a degenerate face.
+inline Vec3d faceNormal(const Vec3d& v0, const Vec3d& v1, const Vec3d& v2)
+{
+    return unitOrZero((v1 - v0).cross(v2 - v0));
+}
+
+/** Stages face f (flat shading) as point `slot` of Lighting::lightRows's rows: its centroid,
+its face normal and, with `colors`, the mean of its vertex colours. */
+inline void stageFace(const Vec3d* verts, const Vec3d* colors, const Vec3i& f,
+                      float (*in)[kLightBatch], int slot)
+{
+    const Vec3d &v0 = verts[f[0]], &v1 = verts[f[1]], &v2 = verts[f[2]];
+    const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
+    for (int k = 0; k < 3; k++) {
+        in[k][slot] = float(centroid[k]);
+        in[3 + k][slot] = float(n[k]);
+        if (colors)
+            in[6 + k][slot] =
+                float((colors[f[0]][k] + colors[f[1]][k] + colors[f[2]][k]) / 3.0);
+    }
+}
+
 OPENCV_SHADING_ISA_BEGIN
 
 /** Samples waiting to be lit together (Phong): their pixels and interpolated position, normal
