@@ -260,7 +260,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     // A mesh wholly in front of the near plane, without culling: every face is drawn whole. The
     // faces are then the caller's, and the band pass takes their sort keys from the vertices'
     // camera z (the painter's mean, the z-buffer's nearest): the faces' passes below are skipped,
-    // but for lighting flat faces.
+    // but for the values of flat faces (unlit: their mean colours; textured and lit: D and S).
     const bool whole = allInFront && settings.cullMode == CULL_NONE;
     // Faces, in two parallel passes over chunks: what each face becomes (culled, whole, or cut
     // into one or two triangles with two new vertices), then, at offsets from prefix sums, the
