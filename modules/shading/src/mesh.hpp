@@ -910,16 +910,21 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     for (size_t next = 0; next < orderSize;) {
                         int count = 0;
                         for (; next < orderSize && count < kBatch; next++) {
-                            if (next + kBoxPrefetch < orderSize)
-                                __builtin_prefetch(&boxes[entryFace(order[next + kBoxPrefetch])]);
+                            if (next + kBoxPrefetch < orderSize) {
+                                const int ahead = entryFace(order[next + kBoxPrefetch]);
+                                __builtin_prefetch(&boxes[ahead]);
+                                __builtin_prefetch(&faceKeys[ahead]);
+                            }
                             const int face = entryFace(order[next]);
                             const SampleBox& box = boxes[face];
                             // Its nearest vertex, less float rounding: no sample is nearer.
                             const float nearest = float(faceKeys[face]) * (1.f - 1e-6f);
                             if (!zbuffer.hidden(std::max(box.rowBegin, y0) - y0,
                                                 std::min(box.rowEnd, y1) - y0, box.colFirst,
-                                                box.colLast, nearest))
+                                                box.colLast, nearest)) {
+                                __builtin_prefetch(&mesh.faces[face]);  // read by prepareBatch
                                 batchFaces[count++] = face;
+                            }
                         }
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
