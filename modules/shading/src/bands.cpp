@@ -87,7 +87,12 @@ struct SurfaceShaders {
                 colors[j][k] = out[k][j];
     }
 
-    void prefetchVertex(int vertex) const { __builtin_prefetch(&screen->invZ[vertex]); }
+    void prefetchVertex(int vertex) const
+    {
+        __builtin_prefetch(&screen->invZ[vertex]);
+        if constexpr (Shader::kAttributes > 0)  // read by make()
+            __builtin_prefetch(&screen->attributes[size_t(vertex) * kAttributes]);
+    }
 
     //! Fills the band's rows of the outputs this call created (DepthTargets::fillDepth).
     void beginBand(int y0, int y1) const
