@@ -19,7 +19,6 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 
 namespace cv {
 namespace shading {
@@ -347,28 +346,22 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 va[k] = fa[k] + s * (ba[k] - fa[k]);
             return v;
         };
-        // Lit flat faces: each lit once, at its centroid with its face normal and mean colour
-        // (or, textured, its D and S), a batch at a time; the result goes to its pieces
-        // [first, end) of the output faces.
+        // Textured lit flat faces: each lit once, at its centroid with its face normal, into its
+        // D and S, a batch at a time; the result goes to its pieces [first, end) of the output
+        // faces. (Untextured ones are lit by the band pass: ScreenMesh::flatLit.)
         LightBlock block;
         int firstPiece[kLightBatch], endPiece[kLightBatch];
         int staged = 0;
         auto lightStaged = [&]() {
-            lighting.lightRows(textured, block.in, block.out, staged);
-            auto store = [&](auto values) {  // 3 or 6 a face, known to the compiler
-                for (int j = 0; j < staged; j++)
-                    for (int k = firstPiece[j]; k < endPiece[j]; k++)
-                        for (int c = 0; c < values; c++)
-                            faceValues[size_t(k) * values + c] = block.out[c][j];
-            };
-            if (textured)
-                store(std::integral_constant<int, 6>());
-            else
-                store(std::integral_constant<int, 3>());
+            lighting.lightRows(true, block.in, block.out, staged);
+            for (int j = 0; j < staged; j++)
+                for (int k = firstPiece[j]; k < endPiece[j]; k++)
+                    for (int c = 0; c < 6; c++)
+                        faceValues[size_t(k) * 6 + c] = block.out[c][j];
             staged = 0;
         };
         auto lightFace = [&](const Vec3i& f, int first, int pieceEnd) {
-            stageFace(in.verts.data(), textured ? nullptr : in.colors.data(), f, block.in, staged);
+            stageFace(in.verts.data(), nullptr, f, block.in, staged);
             firstPiece[staged] = first, endPiece[staged] = pieceEnd;
             if (++staged == kLightBatch)
                 lightStaged();
