@@ -8,7 +8,6 @@
 #include <opencv2/core.hpp>
 
 #include <atomic>
-#include <utility>
 #include <vector>
 
 namespace cv {
