@@ -10,6 +10,7 @@
 #include <climits>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace cv {
 namespace shading {
