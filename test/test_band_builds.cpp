@@ -8,7 +8,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/shading.hpp>
 
+#include <algorithm>
 #include <functional>
+#include <limits>
 #include <string>
 
 using namespace cv;
@@ -78,6 +80,57 @@ TEST_F(BandBuilds, Scenes2dAgreeBitForBit)
                 std::string(kind) + " 8-bit drawMesh, shade " + std::to_string(shade));
         }
     }
+}
+
+// Faces across the canvas's edges, on sample rows and columns, far off it, beyond the 2^40 limit
+// or NaN (skipped), and degenerate: the
+// AVX2 build finds faces' sample boxes four at a time in doubles, the baseline one by one in
+// integers.
+TEST_F(BandBuilds, FacesAcrossTheEdgesAgreeBitForBit)
+{
+    const Size size(97, 61);
+    RNG rng(20261125);
+    // Coordinates on and near the edges' samples, far away, and anywhere around the canvas.
+    auto coordinate = [&](int extent) {
+        const double special[] = {std::numeric_limits<double>::quiet_NaN(), -1e13, -1e12, -1e6, -1.0, -0.5, -1.0 / 256, 0.0, 1.0 / 256, 0.5,
+                                  extent - 1.0, extent - 1.0 + 1.0 / 256, extent - 0.5,
+                                  extent - 1.0 / 256, double(extent), extent + 1.0 / 256,
+                                  extent + 1.0, 1e6, 1e12, 1e13};
+        const int pick = rng.uniform(0, 4);
+        if (pick == 0)
+            return special[rng.uniform(0, int(sizeof(special) / sizeof(special[0])))];
+        if (pick == 1)  // on the subpixel grid, near the canvas
+            return rng.uniform(-3 * 256, (extent + 3) * 256) / 256.0;
+        return rng.uniform(-0.5 * extent, 1.5 * extent);
+    };
+    const int vertexCount = 3001;  // faces: not a multiple of four
+    Mat verts(vertexCount, 2, CV_64F), colors(vertexCount, 3, CV_32F), depth(vertexCount, 1, CV_64F);
+    for (int i = 0; i < vertexCount; i++) {
+        verts.at<double>(i, 0) = coordinate(size.width);
+        verts.at<double>(i, 1) = coordinate(size.height);
+        depth.at<double>(i) = rng.uniform(0.0, 10.0);
+        for (int k = 0; k < 3; k++)
+            colors.at<float>(i, k) = float(rng.uniform(0.0, 1.0));
+    }
+    Mat faces(4001, 3, CV_32S);
+    for (int i = 0; i < faces.rows; i++) {
+        // Mostly small faces: neighbouring vertices, with repeats (degenerate faces).
+        const int first = rng.uniform(0, vertexCount);
+        for (int k = 0; k < 3; k++)
+            faces.at<int>(i, k) = k == 0 || rng.uniform(0, 8) == 0
+                                      ? first
+                                      : std::min(vertexCount - 1, first + rng.uniform(0, 40));
+    }
+    for (int shade : {shading::SHADE_FLAT, shading::SHADE_GOURAUD})
+        for (bool byDepth : {false, true})
+            expectBuildsAgree(
+                [&] {
+                    Mat img;
+                    shading::render(verts, faces, colors, byDepth ? depth : Mat(), img, shade,
+                                    size, Scalar(0.1, 0.2, 0.3));
+                    return std::vector<Mat>{img};
+                },
+                "shade " + std::to_string(shade) + (byDepth ? ", by depth" : ", in face order"));
 }
 
 TEST_F(BandBuilds, Scenes3dAgreeBitForBit)
