@@ -80,7 +80,7 @@ struct SurfaceShaders {
         alignas(32) float in[9][kLightBatch];
         alignas(32) float out[6][kLightBatch];
         for (int j = 0; j < count; j++)
-            stageFace(lit.verts, lit.colors, lit.faces[screen->sourceOf(faces[j])], in, j);
+            stageFace(lit.verts, &lit.colors, lit.faces[screen->sourceOf(faces[j])], in, j);
         targets->lighting->lightRows(false, in, out, count);
         for (int j = 0; j < count; j++)
             for (int k = 0; k < 3; k++)

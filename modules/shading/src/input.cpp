@@ -169,6 +169,32 @@ void readVectors(InputArray arr, const char* argName, int expectedCount, std::ve
     readItems(arr, argName, expectedCount, out, pending, check);
 }
 
+Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& storage,
+                PendingConversions* pending, std::atomic<bool>* nonFinite)
+{
+    const Mat m = arr.getMat();
+    // Matrices and vectors only: their memory is the caller's, not a mapping that ends with m.
+    if (m.depth() != CV_32F || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+        readVectors(arr, argName, expectedCount, storage, pending, nonFinite);
+        return Rows3(storage);
+    }
+    const size_t count = size_t(countRows(m, argName, 3, expectedCount));
+    storage.clear();
+    if (nonFinite) {
+        const float* v = m.ptr<float>();
+        const int slices = int((3 * count + kConversionSlice - 1) / kConversionSlice);
+        parallel_for_(Range(0, slices), [&](const Range& r) {
+            const size_t end = std::min(3 * count, size_t(r.end) * kConversionSlice);
+            bool finite = true;
+            for (size_t i = size_t(r.start) * kConversionSlice; i < end; i++)
+                finite &= v[i] - v[i] == 0;  // NaN for infinities and NaN; vectorizes
+            if (!finite)
+                nonFinite->store(true, std::memory_order_relaxed);
+        });
+    }
+    return Rows3(m.ptr<float>(), count);
+}
+
 void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces,
                PendingConversions* pending)
 {

@@ -53,6 +53,39 @@ some value is not finite (checked as the values are converted, once they have ar
 void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
                  PendingConversions* pending = nullptr,
                  std::atomic<bool>* nonFinite = nullptr);
+/** Rows of three values (points, vectors or colours) as doubles, from where they are: the
+caller's own continuous CV_32F values (no copy; float to double is exact, so both forms give the
+same values), or values converted into a vector. Valid while both live. */
+class Rows3 {
+public:
+    Rows3() = default;
+    Rows3(const float* values, size_t count) : floats_(values), size_(count) {}
+    explicit Rows3(const std::vector<Vec3d>& values) : doubles_(values.data()), size_(values.size())
+    {
+    }
+
+    size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+
+    Vec3d operator[](size_t i) const
+    {
+        if (floats_) {
+            const float* v = floats_ + 3 * i;
+            return Vec3d(v[0], v[1], v[2]);
+        }
+        return doubles_[i];
+    }
+
+private:
+    const float* floats_ = nullptr;
+    const Vec3d* doubles_ = nullptr;
+    size_t size_ = 0;
+};
+
+/** readVectors (`nonFinite` given) or readColors (not) without a copy where the values are
+continuous CV_32F: those as they are; else converted into `storage`, as the readers do. */
+Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& storage,
+                PendingConversions* pending, std::atomic<bool>* nonFinite = nullptr);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
                 PendingConversions* pending = nullptr);

@@ -68,7 +68,7 @@ void forChunks(int count, int chunk, Fn&& fn)
 }
 
 //! The index of the first vector of `v` with a non-finite value, or -1.
-int firstNonFinite(const std::vector<Vec3d>& v)
+int firstNonFinite(const Rows3& v)
 {
     for (size_t i = 0; i < v.size(); i++)
         if (!isFinite(v[i]))
@@ -79,7 +79,7 @@ int firstNonFinite(const std::vector<Vec3d>& v)
 /** Vertex normals (seed 004): the normalized sum of the unit normals of the faces using each
 vertex. Face normals in parallel; the sums in face order, serially, so that they never depend on
 the thread count. */
-void vertexNormalsOf(const std::vector<Vec3d>& verts, const std::vector<Vec3i>& faces,
+void vertexNormalsOf(const Rows3& verts, const std::vector<Vec3i>& faces,
                      std::vector<Vec3d>& normals, std::vector<Vec3d>& perFace)
 {
     perFace.resize(faces.size());
@@ -137,7 +137,9 @@ void checkSettings(const RenderSettings& s)
 
 //! The inputs of drawMesh3d, checked and converted.
 struct Mesh3dInput {
-    std::vector<Vec3d> verts, colors, normals;
+    //! The caller's values where they are continuous CV_32F, else converted into the storage.
+    Rows3 verts, colors, normals;
+    std::vector<Vec3d> vertStorage, colorStorage, normalStorage;
     std::vector<Point2d> texCoords;  //!< textured meshes (then `colors` is empty)
     std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
     std::vector<double> cameraZ;     //!< per vertex: camera z (NaN: a coordinate not finite)
@@ -212,12 +214,12 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             for (int b = begin; b < end; b += kLightBatch) {
                 const int count = std::min(kLightBatch, end - b);
                 for (int j = 0; j < count; j++) {
-                    const Vec3d normal = unitOrZero(in.normals[b + j]);
+                    const Vec3d vertex = in.verts[b + j], normal = unitOrZero(in.normals[b + j]);
+                    const Vec3d color = textured ? Vec3d() : in.colors[b + j];
                     for (int k = 0; k < 3; k++) {
-                        block.in[k][j] = float(in.verts[b + j][k]);
+                        block.in[k][j] = float(vertex[k]);
                         block.in[3 + k][j] = float(normal[k]);
-                        if (!textured)
-                            block.in[6 + k][j] = float(in.colors[b + j][k]);
+                        block.in[6 + k][j] = float(color[k]);  // (unread when textured)
                     }
                 }
                 lighting.lightRows(textured, block.in, block.out, count);
@@ -242,13 +244,16 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                 a += 2;
             }
             if (surface == Surface::kGouraud && !lit) {
-                std::copy(in.colors[i].val, in.colors[i].val + 3, a);
+                const Vec3d color = in.colors[i];
+                std::copy(color.val, color.val + 3, a);
             } else if (surface == Surface::kPhong || surface == Surface::kTexturedSampleLit) {
-                std::copy(in.verts[i].val, in.verts[i].val + 3, a);
-                const Vec3d normal = unitOrZero(in.normals[i]);
+                const Vec3d vertex = in.verts[i], normal = unitOrZero(in.normals[i]);
+                std::copy(vertex.val, vertex.val + 3, a);
                 std::copy(normal.val, normal.val + 3, a + 3);
-                if (!textured)
-                    std::copy(in.colors[i].val, in.colors[i].val + 3, a + 6);
+                if (!textured) {
+                    const Vec3d color = in.colors[i];
+                    std::copy(color.val, color.val + 3, a + 6);
+                }
             }
         }
         if (!chunkInFront)
@@ -283,7 +288,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
                               usableTexCoord(in.texCoords[f[2]])))
                 continue;
             if (settings.cullMode != CULL_NONE) {
-                const Vec3d& v0 = in.verts[f[0]];
+                const Vec3d v0 = in.verts[f[0]];
                 const double facing = (in.verts[f[1]] - v0).cross(in.verts[f[2]] - v0).dot(eye - v0);
                 if (settings.cullMode == CULL_BACK ? !(facing > 0) : !(facing < 0))
                     continue;
@@ -361,7 +366,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             staged = 0;
         };
         auto lightFace = [&](const Vec3i& f, int first, int pieceEnd) {
-            stageFace(in.verts.data(), nullptr, f, block.in, staged);
+            stageFace(in.verts, nullptr, f, block.in, staged);
             firstPiece[staged] = first, endPiece[staged] = pieceEnd;
             if (++staged == kLightBatch)
                 lightStaged();
@@ -407,7 +412,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             if (litFaces) {
                 lightFace(f, first, nextFace);
             } else if (surface == Surface::kFlat && !lit) {  // the mean, as the 2D flats() takes it
-                const Vec3d &c0 = in.colors[f[0]], &c1 = in.colors[f[1]], &c2 = in.colors[f[2]];
+                const Vec3d c0 = in.colors[f[0]], c1 = in.colors[f[1]], c2 = in.colors[f[2]];
                 float mean[3];
                 for (int j = 0; j < 3; j++)
                     mean[j] = float((c0[j] + c1[j] + c2[j]) / 3.0);
@@ -423,7 +428,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     }
     screen.flatLit = {};
     if (lazyLit)
-        screen.flatLit = {in.verts.data(), in.colors.data(),
+        screen.flatLit = {in.verts, in.colors,
                           whole ? screen.mesh.faces.data() : in.faces.data()};
 }
 
@@ -436,7 +441,7 @@ void computeNormals(InputArray verts3d, InputArray faces, OutputArray vertexNorm
     std::vector<Vec3i> faceList;
     readVectors(verts3d, "verts3d", -1, verts);
     readFaces(faces, "faces", int(verts.size()), faceList);
-    vertexNormalsOf(verts, faceList, normals, perFace);
+    vertexNormalsOf(Rows3(verts), faceList, normals, perFace);
     writeRows(normals, vertexNormals);
     if (faceNormals.needed())
         writeRows(perFace, faceNormals);
@@ -468,18 +473,20 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     // Shapes are checked as each array is read; the values are converted together, in parallel,
     // by readFaces.
     PendingConversions pending;
-    readVectors(verts3d, "verts3d", -1, in.verts, &pending);
+    in.verts = readRows3(verts3d, "verts3d", -1, in.vertStorage, &pending);
     const int vertexCount = int(in.verts.size());
     if (textured) {
         readPoints(texCoords, "texCoords", vertexCount, in.texCoords, &pending);
-        in.colors.clear();
+        in.colors = Rows3();
     } else {
-        readColors(vcolors, "vcolors", vertexCount, in.colors, &pending);
+        in.colors = readRows3(vcolors, "vcolors", vertexCount, in.colorStorage, &pending);
         in.texCoords.clear();
     }
     std::atomic<bool> normalsNonFinite(false);  // checked as they are converted
+    in.normals = Rows3();
     if (!normals.empty())
-        readVectors(normals, "normals", vertexCount, in.normals, &pending, &normalsNonFinite);
+        in.normals = readRows3(normals, "normals", vertexCount, in.normalStorage, &pending,
+                               &normalsNonFinite);
     readFaces(faces, "faces", vertexCount, in.faces, &pending);  // last: runs the conversions
     timer.mark("read");
     const bool lit = !settings.lights.empty();
@@ -489,7 +496,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
             CV_Error(Error::StsOutOfRange,
                      format("normals: normal %d is not finite", firstNonFinite(in.normals)));
     } else if (needNormals) {
-        vertexNormalsOf(in.verts, in.faces, in.normals, in.faceNormals);
+        vertexNormalsOf(in.verts, in.faces, in.normalStorage, in.faceNormals);
+        in.normals = Rows3(in.normalStorage);
     }
     const Size size = canvasArr.size();
     const bool depthGiven = !depthBuffer.empty();
@@ -560,7 +568,9 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     }
     if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
         screen = ScreenMesh();
-    if (in.verts.capacity() * sizeof(Vec3d) * 3 > MeshWorkspace::kKeepBytes)
+    if ((in.vertStorage.capacity() + in.colorStorage.capacity() + in.normalStorage.capacity()) *
+            sizeof(Vec3d) >
+        MeshWorkspace::kKeepBytes)
         in = Mesh3dInput();
     if (keptDepth.total() * sizeof(float) > MeshWorkspace::kKeepBytes)
         keptDepth.release();

@@ -34,8 +34,7 @@ struct ScreenMesh {
     /** kFlat with lights: the caller's vertices, colours and faces (indexed by sourceOf), from
     which the band pass lights each face it sets up (stageFace); null pointers otherwise. */
     struct FlatLit {
-        const Vec3d* verts = nullptr;
-        const Vec3d* colors = nullptr;
+        Rows3 verts, colors;
         const Vec3i* faces = nullptr;
     } flatLit;
 

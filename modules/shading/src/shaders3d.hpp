@@ -5,6 +5,7 @@
 #ifndef OPENCV_SHADING_SHADERS3D_HPP
 #define OPENCV_SHADING_SHADERS3D_HPP
 
+#include "input.hpp"
 #include "shaders.hpp"
 #include "lighting_kernel.hpp"
 #include "texture_sampler.hpp"
@@ -179,17 +180,19 @@ inline Vec3d faceNormal(const Vec3d& v0, const Vec3d& v1, const Vec3d& v2)
 
 /** Stages face f (flat shading) as point `slot` of Lighting::lightRows's rows: its centroid,
 its face normal and, with `colors`, the mean of its vertex colours. */
-inline void stageFace(const Vec3d* verts, const Vec3d* colors, const Vec3i& f,
+inline void stageFace(const Rows3& verts, const Rows3* colors, const Vec3i& f,
                       float (*in)[kLightBatch], int slot)
 {
-    const Vec3d &v0 = verts[f[0]], &v1 = verts[f[1]], &v2 = verts[f[2]];
+    const Vec3d v0 = verts[f[0]], v1 = verts[f[1]], v2 = verts[f[2]];
     const Vec3d centroid = (v0 + v1 + v2) * (1.0 / 3.0), n = faceNormal(v0, v1, v2);
+    Vec3d c0, c1, c2;
+    if (colors)
+        c0 = (*colors)[f[0]], c1 = (*colors)[f[1]], c2 = (*colors)[f[2]];
     for (int k = 0; k < 3; k++) {
         in[k][slot] = float(centroid[k]);
         in[3 + k][slot] = float(n[k]);
         if (colors)
-            in[6 + k][slot] =
-                float((colors[f[0]][k] + colors[f[1]][k] + colors[f[2]][k]) / 3.0);
+            in[6 + k][slot] = float((c0[k] + c1[k] + c2[k]) / 3.0);
     }
 }
 
