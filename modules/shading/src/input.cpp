@@ -195,6 +195,18 @@ Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vec
     return Rows3(m.ptr<float>(), count);
 }
 
+//! Raises the error for the first index of faces[0 .. count) outside [0, vertexCount).
+static void reportIndexOutside(const Vec3i* faces, size_t count, const char* argName,
+                               int vertexCount)
+{
+    for (size_t i = 0; i < count; i++)
+        for (int k = 0; k < 3; k++)
+            if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
+                CV_Error(Error::StsOutOfRange,
+                         format("%s: face %zu has index %d, outside [0, %d) (the vertex count)",
+                                argName, i, faces[i][k], vertexCount));
+}
+
 void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& faces,
                PendingConversions* pending)
 {
@@ -208,12 +220,7 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
         if (pending)
             pending->run();
         if (outside)
-            for (size_t i = 0; i < faces.size(); i++)
-                for (int k = 0; k < 3; k++)
-                    if (faces[i][k] < 0 || faces[i][k] >= vertexCount)
-                        CV_Error(Error::StsOutOfRange,
-                                 format("%s: face %zu has index %d, outside [0, %d) (the vertex "
-                                        "count)", argName, i, faces[i][k], vertexCount));
+            reportIndexOutside(faces.data(), faces.size(), argName, vertexCount);
         return;
     }
     // Floating-point indices: each is checked (range, then integrality) as it is converted.
@@ -234,6 +241,35 @@ void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector
                          format("%s: face %zu has non-integer index %g", argName, i, index));
             faces[i][k] = int(index);
         }
+}
+
+FaceRows readFaceRows(InputArray arr, const char* argName, int vertexCount,
+                      std::vector<Vec3i>& storage, PendingConversions* pending)
+{
+    const Mat m = arr.getMat();
+    // Matrices and vectors only: their memory is the caller's, not a mapping that ends with m.
+    if (m.depth() != CV_32S || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+        readFaces(arr, argName, vertexCount, storage, pending);
+        return FaceRows(storage);
+    }
+    const size_t count = size_t(countRows(m, argName, 3, -1));
+    if (pending)
+        pending->run();
+    storage.clear();
+    const int* indices = m.ptr<int>();
+    std::atomic<bool> outside(false);
+    const int slices = int((3 * count + kConversionSlice - 1) / kConversionSlice);
+    parallel_for_(Range(0, slices), [&](const Range& r) {
+        const size_t begin = size_t(r.start) * kConversionSlice;
+        const size_t end = std::min(3 * count, size_t(r.end) * kConversionSlice);
+        if (anyIndexOutside(indices + begin, end - begin, vertexCount))
+            outside.store(true, std::memory_order_relaxed);
+    });
+    static_assert(sizeof(Vec3i) == 3 * sizeof(int), "a face is its three indices");
+    const Vec3i* faces = reinterpret_cast<const Vec3i*>(indices);
+    if (outside)
+        reportIndexOutside(faces, count, argName, vertexCount);
+    return FaceRows(faces, count);
 }
 
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,

@@ -82,6 +82,24 @@ private:
     size_t size_ = 0;
 };
 
+/** Faces as index triples, from where they are: the caller's own continuous CV_32S values (no
+copy), or values converted into a vector. Valid while both live. */
+class FaceRows {
+public:
+    FaceRows() = default;
+    FaceRows(const Vec3i* faces, size_t count) : faces_(faces), size_(count) {}
+    explicit FaceRows(const std::vector<Vec3i>& faces) : FaceRows(faces.data(), faces.size()) {}
+
+    size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    const Vec3i& operator[](size_t i) const { return faces_[i]; }
+    const Vec3i* data() const { return faces_; }
+
+private:
+    const Vec3i* faces_ = nullptr;
+    size_t size_ = 0;
+};
+
 /** readVectors (`nonFinite` given) or readColors (not) without a copy where the values are
 continuous CV_32F: those as they are; else converted into `storage`, as the readers do. */
 Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& storage,
@@ -93,6 +111,11 @@ void readDepths(InputArray arr, const char* argName, int expectedCount, std::vec
 runs it (the other readers' conversions too) before checking: call it last. */
 void readFaces(InputArray arr, const char* argName, int vertexCount, std::vector<Vec3i>& out,
                PendingConversions* pending = nullptr);
+
+/** readFaces without a copy where the indices are continuous CV_32S: those, checked where they
+are; else converted into `storage`, as readFaces does. Call it last, as readFaces. */
+FaceRows readFaceRows(InputArray arr, const char* argName, int vertexCount,
+                      std::vector<Vec3i>& storage, PendingConversions* pending);
 
 //! Checks that `canvas` is a non-empty CV_32FC3 or CV_8UC3 image.
 void checkCanvas(InputOutputArray canvas, const char* argName);

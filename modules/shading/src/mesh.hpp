@@ -12,6 +12,7 @@
 #ifndef OPENCV_SHADING_MESH_HPP
 #define OPENCV_SHADING_MESH_HPP
 
+#include "input.hpp"
 #include "raster.hpp"
 #include "shaders.hpp"
 
@@ -398,7 +399,8 @@ struct MeshData {
     std::vector<Point2d> vertices;  //!< unused when `snapped` is given
     //! The vertices already snapped (snapToGrid), or empty: the band pass snaps `vertices`.
     std::vector<FixedPoint> snapped;
-    std::vector<Vec3i> faces;   //!< indices checked against vertices
+    FaceRows faces;                 //!< indices checked against vertices
+    std::vector<Vec3i> faceStorage;  //!< the faces, where they are not the caller's
     std::vector<Vec3d> colors;  //!< one per vertex
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order (or by faceDepth)
     //! One per face, or empty: the painter's key of each face instead of its vertices' mean
@@ -408,7 +410,7 @@ struct MeshData {
     size_t capacityBytes() const
     {
         return vertices.capacity() * sizeof(Point2d) + snapped.capacity() * sizeof(FixedPoint) +
-               faces.capacity() * sizeof(Vec3i) +
+               faceStorage.capacity() * sizeof(Vec3i) +
                colors.capacity() * sizeof(Vec3d) +
                (depth.capacity() + faceDepth.capacity()) * sizeof(double);
     }

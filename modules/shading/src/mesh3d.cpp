@@ -79,7 +79,7 @@ int firstNonFinite(const Rows3& v)
 /** Vertex normals (seed 004): the normalized sum of the unit normals of the faces using each
 vertex. Face normals in parallel; the sums in face order, serially, so that they never depend on
 the thread count. */
-void vertexNormalsOf(const Rows3& verts, const std::vector<Vec3i>& faces,
+void vertexNormalsOf(const Rows3& verts, const FaceRows& faces,
                      std::vector<Vec3d>& normals, std::vector<Vec3d>& perFace)
 {
     perFace.resize(faces.size());
@@ -144,7 +144,8 @@ struct Mesh3dInput {
     std::vector<Vec3d> faceNormals;  //!< scratch of vertexNormalsOf
     std::vector<double> cameraZ;     //!< per vertex: camera z (NaN: a coordinate not finite)
     std::vector<uint8_t> side;       //!< per vertex: where it lies, a VertexSide
-    std::vector<Vec3i> faces;
+    FaceRows faces;  //!< the caller's where they are continuous CV_32S, else faceStorage
+    std::vector<Vec3i> faceStorage;
 };
 
 /** Points waiting to be lit together (Lighting::lightRows), staged in the kernel's rows. */
@@ -308,7 +309,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     }
     const int outFaces = whole ? faceCount : chunkFaces[chunks];
     const int outVertices = vertexCount + chunkVertices[chunks];
-    screen.mesh.faces.resize(whole ? 0 : outFaces);  // whole: the caller's, moved in below
+    screen.mesh.faceStorage.resize(whole ? 0 : outFaces);  // whole: the caller's faces
     screen.source.resize(whole ? 0 : outFaces);
     screen.mesh.faceDepth.resize(whole ? 0 : outFaces);
     screen.mesh.depth.clear();
@@ -327,7 +328,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     screen.attributes.resize(size_t(outVertices) * stride);
 
     // The outputs, sized above: each chunk writes the pieces of its own faces.
-    Vec3i* const outFace = screen.mesh.faces.data();
+    Vec3i* const outFace = screen.mesh.faceStorage.data();
     int* const source = screen.source.data();
     double* const faceDepth = screen.mesh.faceDepth.data();
     const double* const invZ = screen.invZ.data();
@@ -422,14 +423,12 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
         }
         lightStaged();
     });
-    if (whole) {
-        screen.mesh.faces.swap(in.faces);  // in.faces is read afresh by the next call
+    screen.mesh.faces = whole ? in.faces : FaceRows(screen.mesh.faceStorage);
+    if (whole)
         screen.mesh.depth.swap(cameraZ);
-    }
     screen.flatLit = {};
     if (lazyLit)
-        screen.flatLit = {in.verts, in.colors,
-                          whole ? screen.mesh.faces.data() : in.faces.data()};
+        screen.flatLit = {in.verts, in.colors, in.faces.data()};
 }
 
 }  // namespace
@@ -441,7 +440,7 @@ void computeNormals(InputArray verts3d, InputArray faces, OutputArray vertexNorm
     std::vector<Vec3i> faceList;
     readVectors(verts3d, "verts3d", -1, verts);
     readFaces(faces, "faces", int(verts.size()), faceList);
-    vertexNormalsOf(Rows3(verts), faceList, normals, perFace);
+    vertexNormalsOf(Rows3(verts), FaceRows(faceList), normals, perFace);
     writeRows(normals, vertexNormals);
     if (faceNormals.needed())
         writeRows(perFace, faceNormals);
@@ -487,7 +486,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     if (!normals.empty())
         in.normals = readRows3(normals, "normals", vertexCount, in.normalStorage, &pending,
                                &normalsNonFinite);
-    readFaces(faces, "faces", vertexCount, in.faces, &pending);  // last: runs the conversions
+    // Last: runs the conversions.
+    in.faces = readFaceRows(faces, "faces", vertexCount, in.faceStorage, &pending);
     timer.mark("read");
     const bool lit = !settings.lights.empty();
     const bool needNormals = lit && settings.shadeType != SHADE_FLAT;

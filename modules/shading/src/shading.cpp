@@ -73,7 +73,8 @@ MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inp
     const int count = int(mesh.vertices.size());
     readColors(vcolors, "vcolors", count, mesh.colors, &pending);
     readDepths(depth, "depth", count, mesh.depth, &pending);
-    readFaces(faces, "faces", count, mesh.faces, &pending);  // last: runs the conversions
+    // Last: runs the conversions.
+    mesh.faces = readFaceRows(faces, "faces", count, mesh.faceStorage, &pending);
     return mesh;
 }
 
