@@ -479,6 +479,83 @@ TEST(DrawMesh3d, SameImageForAnyThreadCount)
     setNumThreads(threads);
 }
 
+// Vertices, colours and normals given as continuous CV_32F, and faces as continuous CV_32S, are
+// read where the caller keeps them; other forms are converted. Every form of the same values
+// must draw the same image, depth and ids, through every pass that reads them: lighting (flat,
+// per vertex, per sample), normals computed when none are given, culling and near clipping.
+TEST(DrawMesh3d, InputFormsAgree)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1, 1), z(2, 8), unit(0, 1);
+    const int vertexCount = 12000, faceCount = 20000;  // over 32,768 values: converted in slices
+    Mat verts(vertexCount, 3, CV_32F), colors(vertexCount, 3, CV_32F), normals(vertexCount, 3, CV_32F);
+    for (int i = 0; i < vertexCount; i++) {
+        const float d = i % 997 == 0 ? -1.f : z(rng);  // a few behind the camera: clipped faces
+        verts.at<Vec3f>(i) = Vec3f(u(rng) * d, u(rng) * d, d);
+        colors.at<Vec3f>(i) = Vec3f(unit(rng), unit(rng), unit(rng));
+        normals.at<Vec3f>(i) = Vec3f(u(rng), u(rng), u(rng));
+    }
+    Mat faces(faceCount, 3, CV_32S);
+    std::uniform_int_distribution<int> pick(0, vertexCount - 1);
+    for (int i = 0; i < faceCount; i++)
+        faces.at<Vec3i>(i) = Vec3i(pick(rng), pick(rng), pick(rng));
+    // The same values as doubles (faces as floating-point indices), as vectors, and as
+    // non-continuous column ranges of wider matrices.
+    Mat verts64, colors64, normals64, faces64;
+    verts.convertTo(verts64, CV_64F), colors.convertTo(colors64, CV_64F);
+    normals.convertTo(normals64, CV_64F), faces.convertTo(faces64, CV_64F);
+    auto roi = [](const Mat& m) {
+        Mat wide(m.rows, m.cols + 1, m.type(), Scalar::all(0));
+        m.copyTo(wide.colRange(0, m.cols));
+        return wide.colRange(0, m.cols);
+    };
+    const std::vector<Point3f> vertVector = verts.reshape(3);
+    const std::vector<Vec3f> colorVector = colors.reshape(3), normalVector = normals.reshape(3);
+    const std::vector<Vec3i> faceVector = faces.reshape(3);
+    struct Form {
+        const char* name;
+        _InputArray verts, faces, colors, normals;
+    };
+    const Mat vertsRoi = roi(verts), colorsRoi = roi(colors), normalsRoi = roi(normals),
+              facesRoi = roi(faces);
+    ASSERT_FALSE(vertsRoi.isContinuous());
+    const Form forms[] = {{"CV_32F / CV_32S matrices", verts, faces, colors, normals},
+                          {"CV_64F matrices", verts64, faces64, colors64, normals64},
+                          {"vectors", vertVector, faceVector, colorVector, normalVector},
+                          {"column ranges", vertsRoi, facesRoi, colorsRoi, normalsRoi}};
+    const Cam cam(150, 128, 128);
+    for (int shade : {SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG})
+        for (int vis : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER})
+            for (int variant = 0; variant < 3; variant++) {  // lit; unlit and culled; no normals
+                RenderSettings s;
+                s.shadeType = shade;
+                s.visibility = vis;
+                if (variant != 1)
+                    s.lights = {PointLight(Point3d(0, -3, 0), Vec3d(1, 0.9, 0.8))};
+                if (variant == 1)
+                    s.cullMode = CULL_BACK;
+                Mat first[3];
+                for (const Form& form : forms) {
+                    Mat canvas = shading_test::sentinelCanvas(Size(256, 256), CV_32FC3), depth, ids;
+                    drawMesh3d(canvas, form.verts, form.faces, form.colors, cam.K, cam.rvec,
+                               cam.tvec, s, variant == 2 ? _InputArray() : form.normals, depth,
+                               ids);
+                    if (first[0].empty()) {
+                        first[0] = canvas, first[1] = depth, first[2] = ids;
+                        ASSERT_GT(countNonZero(ids.reshape(1) >= 0), 1000);
+                        continue;
+                    }
+                    const std::string what = std::string(form.name) + ", shade " +
+                                             std::to_string(shade) + ", visibility " +
+                                             std::to_string(vis) + ", variant " +
+                                             std::to_string(variant);
+                    EXPECT_EQ(shading_test::maxAbsDiff(canvas, first[0]), 0) << what;
+                    EXPECT_EQ(cv::norm(depth, first[1], NORM_INF), 0) << what;
+                    EXPECT_EQ(cv::norm(ids, first[2], NORM_INF), 0) << what;
+                }
+            }
+}
+
 // A mesh wholly in front of the near plane skips the clipping passes: its faces are the caller's
 // and their sort keys come from the vertices. One unused vertex behind the camera sends the same
 // faces through the clipping passes instead; both must give the same image, depth and ids, lit
