@@ -83,9 +83,8 @@ TEST_F(BandBuilds, Scenes2dAgreeBitForBit)
 }
 
 // Faces across the canvas's edges, on sample rows and columns, far off it, beyond the 2^40 limit
-// or NaN (skipped), and degenerate: the
-// AVX2 build finds faces' sample boxes four at a time in doubles, the baseline one by one in
-// integers.
+// or NaN (skipped), and degenerate: where the builds' small-face walks (8 columns in one vector,
+// or two of 4) meet the canvas's last columns and clipped rows.
 TEST_F(BandBuilds, FacesAcrossTheEdgesAgreeBitForBit)
 {
     const Size size(97, 61);

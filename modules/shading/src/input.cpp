@@ -53,6 +53,26 @@ constexpr int kConversionSlice = 1 << 15;
 
 static bool anyIndexOutside(const int* indices, size_t n, int vertexCount);
 
+//! Whether every one of v[0 .. n) is finite.
+template <typename T>
+static bool allFinite(const T* v, size_t n)
+{
+    bool finite = true;
+    for (size_t i = 0; i < n; i++)
+        finite &= v[i] - v[i] == 0;  // NaN for infinities and NaN; vectorizes
+    return finite;
+}
+
+//! Calls fn(begin, end) for the slices of [0, n), in parallel.
+template <typename Fn>
+static void forSlices(size_t n, Fn&& fn)
+{
+    const int slices = int((n + kConversionSlice - 1) / kConversionSlice);
+    parallel_for_(Range(0, slices), [&](const Range& r) {
+        fn(size_t(r.start) * kConversionSlice, std::min(n, size_t(r.end) * kConversionSlice));
+    });
+}
+
 //! Runs `check` on the values of dst, a single row or a continuous matrix.
 static void checkConverted(const Mat& dst, const ConversionCheck& check)
 {
@@ -61,11 +81,7 @@ static void checkConverted(const Mat& dst, const ConversionCheck& check)
         if (anyIndexOutside(dst.ptr<int>(), n, check.limit))
             check.failed->store(true, std::memory_order_relaxed);
     } else if (check.kind == ConversionCheck::kFinite) {
-        const double* v = dst.ptr<double>();
-        bool finite = true;
-        for (size_t i = 0; i < n; i++)
-            finite &= v[i] - v[i] == 0;  // NaN for infinities and NaN; vectorizes
-        if (!finite)
+        if (!allFinite(dst.ptr<double>(), n))
             check.failed->store(true, std::memory_order_relaxed);
     }
 }
@@ -180,18 +196,11 @@ Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vec
     }
     const size_t count = size_t(countRows(m, argName, 3, expectedCount));
     storage.clear();
-    if (nonFinite) {
-        const float* v = m.ptr<float>();
-        const int slices = int((3 * count + kConversionSlice - 1) / kConversionSlice);
-        parallel_for_(Range(0, slices), [&](const Range& r) {
-            const size_t end = std::min(3 * count, size_t(r.end) * kConversionSlice);
-            bool finite = true;
-            for (size_t i = size_t(r.start) * kConversionSlice; i < end; i++)
-                finite &= v[i] - v[i] == 0;  // NaN for infinities and NaN; vectorizes
-            if (!finite)
+    if (nonFinite)
+        forSlices(3 * count, [&](size_t begin, size_t end) {
+            if (!allFinite(m.ptr<float>() + begin, end - begin))
                 nonFinite->store(true, std::memory_order_relaxed);
         });
-    }
     return Rows3(m.ptr<float>(), count);
 }
 
@@ -258,10 +267,7 @@ FaceRows readFaceRows(InputArray arr, const char* argName, int vertexCount,
     storage.clear();
     const int* indices = m.ptr<int>();
     std::atomic<bool> outside(false);
-    const int slices = int((3 * count + kConversionSlice - 1) / kConversionSlice);
-    parallel_for_(Range(0, slices), [&](const Range& r) {
-        const size_t begin = size_t(r.start) * kConversionSlice;
-        const size_t end = std::min(3 * count, size_t(r.end) * kConversionSlice);
+    forSlices(3 * count, [&](size_t begin, size_t end) {
         if (anyIndexOutside(indices + begin, end - begin, vertexCount))
             outside.store(true, std::memory_order_relaxed);
     });

@@ -642,6 +642,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
     // its area; per chunk, the range of the depths (for quantizing them below) and the faces and
     // area each band receives (for binning).
+    // Each face's sort key: the given faceDepth, or from its vertices' depths, computed here:
+    // their mean (the painter's order) or, depth-tested, the nearest (culled faces keep stale
+    // keys, never used).
     std::vector<double>& depths = work.depths;
     depths.resize(byDepth && !byFaceDepth ? faceCount : 0);
     const double* const faceKeys = byFaceDepth ? mesh.faceDepth.data() : depths.data();
@@ -668,101 +671,23 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             double lo = inf, hi = -inf;  // over finite depths
             uint64_t* count = &binCursor[size_t(chunk) * bandCount];
             double* area = &binArea[size_t(chunk) * bandCount];
-            // Face i's sort key, NaN when it has no place in the order (not drawn): the given
-            // faceDepth, or from its vertices' depths, computed here: their mean (the painter's
-            // order) or, depth-tested, the nearest (culled faces keep stale keys, never used).
-            auto keyOf = [&](int i, const Vec3i& f) {
-                if (byFaceDepth)
-                    return mesh.faceDepth[i];
-                const double d0 = mesh.depth[f[0]], d1 = mesh.depth[f[1]], d2 = mesh.depth[f[2]];
-                const double mean = (d0 + d1 + d2) / 3.0;  // NaN if any is
-                const double key =
-                    depthTested && !std::isnan(mean) ? std::min({d0, d1, d2}) : mean;
-                depths[i] = key;
-                return key;
-            };
-            // What the bands of a face with a box receive; `cross`: its crossInDouble.
-            auto tallyBands = [&](const SampleBox& box, double cross) {
-                // In pixels, for estimating each band's overdraw; the sign gives the winding.
-                const double signedArea = cross * (0.5 / double(kSubpixelOne * kSubpixelOne));
-                const double faceArea = std::abs(signedArea);
-                const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
-                const int firstBand = box.rowBegin >> bandShift;
-                if (firstBand == (box.rowEnd - 1) >> bandShift) {
-                    count[firstBand] += counted;  // the common case: within one band
-                    area[firstBand] += faceArea;
-                    return;
-                }
-                const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
-                forEachBand(box, [&](int k) {
-                    count[k] += counted;
-                    const int inBand = std::min(box.rowEnd, (k + 1) * bandRows) -
-                                       std::max(box.rowBegin, k * bandRows);
-                    area[k] += areaPerRow * inBand;
-                });
-            };
             const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
-            int i = chunk * chunkFaces;
-#if CV_SIMD256_64F
-            // Four faces at once, in the lanes of vectors: their keys and boxes, then what
-            // their bands receive, one by one.
-            const v_float64x4 infinity = v256_setall_f64(inf);
-            const v_float64x4 minusInfinity = v256_setall_f64(-inf);
-            v_float64x4 loLanes = infinity, hiLanes = minusInfinity;
-            for (; i + 4 <= end; i += 4) {
-                FixedPoint p[4][3];
-                double d[3][4];
-                for (int l = 0; l < 4; l++) {
-                    const Vec3i& f = mesh.faces[i + l];
-                    for (int j = 0; j < 3; j++) {
-                        p[l][j] = snapped[f[j]];
-                        if (byDepth && !byFaceDepth)
-                            d[j][l] = mesh.depth[f[j]];
-                    }
-                }
-                unsigned drawable = 15;
-                if (byDepth) {
-                    v_float64x4 key;
-                    if (byFaceDepth) {
-                        key = v256_load(&mesh.faceDepth[i]);
-                    } else {  // as keyOf
-                        const v_float64x4 d0 = v256_load(d[0]), d1 = v256_load(d[1]),
-                                          d2 = v256_load(d[2]);
-                        const v_float64x4 mean = (d0 + d1 + d2) / v256_setall_f64(3.0);
-                        key = depthTested ? v_select(v_not_nan(mean), v_min(v_min(d0, d1), d2),
-                                                     mean)
-                                          : mean;
-                        v_store(&depths[i], key);
-                    }
-                    drawable = unsigned(v_signmask(v_not_nan(key)));
-                    const v_float64x4 finite = v_abs(key) < infinity;
-                    loLanes = v_min(loLanes, v_select(finite, key, infinity));
-                    hiLanes = v_max(hiLanes, v_select(finite, key, minusInfinity));
-                }
-                v_float64x4 cross;
-                const unsigned boxed = triangleBoxes4(p, size, drawable, &boxes[i], cross);
-                if (!boxed)
-                    continue;
-                alignas(32) double crossLanes[4];
-                v_store_aligned(crossLanes, cross);
-                for (int l = 0; l < 4; l++)
-                    if (boxed >> l & 1)
-                        tallyBands(boxes[i + l], crossLanes[l]);
-            }
-            alignas(32) double lanes[2][4];
-            v_store_aligned(lanes[0], loLanes);
-            v_store_aligned(lanes[1], hiLanes);
-            for (int l = 0; l < 4; l++) {
-                lo = std::min(lo, lanes[0][l]);
-                hi = std::max(hi, lanes[1][l]);
-            }
-#endif
-            for (; i < end; i++) {
+            for (int i = chunk * chunkFaces; i < end; i++) {
+                const Vec3i& f = mesh.faces[i];
                 SampleBox& box = boxes[i];
                 box.rowBegin = box.rowEnd = 0;  // culled
-                const Vec3i& f = mesh.faces[i];
                 if (byDepth) {
-                    const double key = keyOf(i, f);
+                    double key;
+                    if (byFaceDepth) {
+                        key = mesh.faceDepth[i];
+                    } else {
+                        const double d0 = mesh.depth[f[0]], d1 = mesh.depth[f[1]],
+                                     d2 = mesh.depth[f[2]];
+                        key = (d0 + d1 + d2) / 3.0;  // NaN if any is
+                        if (depthTested && !std::isnan(key))
+                            key = std::min({d0, d1, d2});
+                        depths[i] = key;
+                    }
                     if (std::isnan(key))
                         continue;  // no place in the order: not drawn
                     if (std::abs(key) < inf) {
@@ -775,7 +700,26 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     box.rowBegin = box.rowEnd = 0;
                     continue;
                 }
-                tallyBands(box, crossInDouble(p));
+                // In pixels, for estimating each band's overdraw; the sign gives the winding.
+                const double signedArea =
+                    (double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
+                     double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
+                    (0.5 / double(kSubpixelOne * kSubpixelOne));
+                const double faceArea = std::abs(signedArea);
+                const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
+                const int firstBand = box.rowBegin >> bandShift;
+                if (firstBand == (box.rowEnd - 1) >> bandShift) {
+                    count[firstBand] += counted;  // the common case: within one band
+                    area[firstBand] += faceArea;
+                    continue;
+                }
+                const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
+                forEachBand(box, [&](int k) {
+                    count[k] += counted;
+                    const int inBand = std::min(box.rowEnd, (k + 1) * bandRows) -
+                                       std::max(box.rowBegin, k * bandRows);
+                    area[k] += areaPerRow * inBand;
+                });
             }
             chunkDepthRange[chunk] = {lo, hi};
         }

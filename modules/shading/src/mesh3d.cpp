@@ -135,7 +135,7 @@ void checkSettings(const RenderSettings& s)
                      format("settings.lights[%zu]: position and intensity must be finite", i));
 }
 
-//! The inputs of drawMesh3d, checked and converted.
+//! The inputs of drawMesh3d, checked, and converted where they are not read in place.
 struct Mesh3dInput {
     //! The caller's values where they are continuous CV_32F, else converted into the storage.
     Rows3 verts, colors, normals;
@@ -469,8 +469,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     }
     const Camera cam = readCamera(cameraMatrix, rvec, tvec);
     thread_local Mesh3dInput in;
-    // Shapes are checked as each array is read; the values are converted together, in parallel,
-    // by readFaces.
+    // Shapes are checked as each array is read; the values not read in place are converted
+    // together, in parallel, by readFaceRows.
     PendingConversions pending;
     in.verts = readRows3(verts3d, "verts3d", -1, in.vertStorage, &pending);
     const int vertexCount = int(in.verts.size());
@@ -569,7 +569,8 @@ void renderMesh3d(InputOutputArray canvasArr, InputArray verts3d, InputArray fac
     if (screen.capacityBytes() > MeshWorkspace::kKeepBytes)
         screen = ScreenMesh();
     if ((in.vertStorage.capacity() + in.colorStorage.capacity() + in.normalStorage.capacity()) *
-            sizeof(Vec3d) >
+                sizeof(Vec3d) +
+            in.faceStorage.capacity() * sizeof(Vec3i) >
         MeshWorkspace::kKeepBytes)
         in = Mesh3dInput();
     if (keptDepth.total() * sizeof(float) > MeshWorkspace::kKeepBytes)

@@ -225,65 +225,6 @@ inline bool triangleBox(const FixedPoint p[3], Size size, SampleBox& box)
     return box.rowBegin < box.rowEnd && box.colFirst <= box.colLast;
 }
 
-//! (p1 - p0) x (p2 - p0) in subpixels squared, rounded once per product (the sign is exact for
-//! narrow triangles, whose products are below 2^53).
-inline double crossInDouble(const FixedPoint p[3])
-{
-    return double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
-           double(p[2].x - p[0].x) * double(p[1].y - p[0].y);
-}
-
-#if CV_SIMD256_64F
-/** triangleBox for the four triangles p[0 .. 3] at once, in the lanes of vectors of doubles:
-bit l of the result is triangleBox's result for p[l] and `drawable` bit l; boxes[l] gets its box
-then, else no rows. Also crossInDouble of each. Every value is exact in double as in the
-integers: snapped coordinates lie within 2^48, an invalid one is -2^63, and dividing by 256 is
-exact. */
-inline unsigned triangleBoxes4(const FixedPoint (*p)[3], Size size, unsigned drawable,
-                               SampleBox* boxes, v_float64x4& cross)
-{
-    auto lanes = [&](int vertex, bool y) {
-        auto c = [&](int l) { return double(y ? p[l][vertex].y : p[l][vertex].x); };
-        return v_float64x4(c(0), c(1), c(2), c(3));
-    };
-    const v_float64x4 x0 = lanes(0, false), x1 = lanes(1, false), x2 = lanes(2, false);
-    const v_float64x4 y0 = lanes(0, true), y1 = lanes(1, true), y2 = lanes(2, true);
-    cross = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
-    const v_float64x4 xMin = v_min(v_min(x0, x1), x2), xMax = v_max(v_max(x0, x1), x2);
-    const v_float64x4 yMin = v_min(v_min(y0, y1), y2), yMax = v_max(v_max(y0, y1), y2);
-    const v_float64x4 zero = v256_setzero_f64();
-    const v_float64x4 width = v256_setall_f64(size.width), height = v256_setall_f64(size.height);
-    const unsigned overlaps = unsigned(v_signmask(
-        (xMin > v256_setall_f64(-0x1p62)) & (xMax >= zero) &
-        (xMin <= width * v256_setall_f64(double(kSubpixelOne)))));
-    // ceilToPixel and the clamps, in that order or the other (clamping to integers commutes with
-    // ceil and floor); the last column as triangleBox takes it where xMax >= 0.
-    const v_float64x4 toPixel = v256_setall_f64(1.0 / double(kSubpixelOne));
-    const v_float64x4 lastColumn = width - v256_setall_f64(1.0);
-    auto clamped = [&](const v_float64x4& fixed, const v_float64x4& limit) {
-        return v_min(v_max(fixed * toPixel, zero), limit);
-    };
-    // Lanes 0 to 3 of each: one per triangle.
-    alignas(32) int values[4][8];
-    v_store_aligned(values[0], v_ceil(clamped(yMin, height)));
-    v_store_aligned(values[1], v_ceil(clamped(yMax, height)));
-    v_store_aligned(values[2], v_ceil(clamped(xMin, lastColumn)));
-    v_store_aligned(values[3], v_floor(clamped(xMax, lastColumn)));
-    v_int32x4 box[4];  // rowBegin, rowEnd, colFirst, colLast of each triangle
-    v_transpose4x4(v_load_aligned(values[0]), v_load_aligned(values[1]),
-                   v_load_aligned(values[2]), v_load_aligned(values[3]), box[0], box[1], box[2],
-                   box[3]);
-    const unsigned nonEmpty = unsigned(v_signmask(
-        (v_load_aligned(values[1]) > v_load_aligned(values[0])) &
-        ~(v_load_aligned(values[2]) > v_load_aligned(values[3]))));
-    const unsigned result = nonEmpty & overlaps & drawable;
-    static_assert(sizeof(SampleBox) == 4 * sizeof(int), "a box is four ints, in that order");
-    for (int l = 0; l < 4; l++)
-        v_store(&boxes[l].rowBegin, box[l] & v_setall_s32(-int(result >> l & 1)));
-    return result;
-}
-#endif
-
 /** The rest of the setup, shared by setupTriangle and setupBoxedTriangle: p holds the vertices
 sorted top to bottom, xMin and xMax their extreme x. Rows are not set here. Returns false for
 zero area. */

@@ -32,7 +32,7 @@ struct ScreenMesh {
     std::vector<float> faceValues;
     int faceStride = 0;
     /** kFlat with lights: the caller's vertices, colours and faces (indexed by sourceOf), from
-    which the band pass lights each face it sets up (stageFace); null pointers otherwise. */
+    which the band pass lights each face it sets up (stageFace); null faces otherwise. */
     struct FlatLit {
         Rows3 verts, colors;
         const Vec3i* faces = nullptr;
