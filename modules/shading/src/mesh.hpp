@@ -963,6 +963,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 const bool sliced = y1 - y0 > paintRows;
                 if (sliced)
                     for (size_t i = 0; i < orderSize; i++) {
+                        if (i + kBoxPrefetch < orderSize)
+                            __builtin_prefetch(&boxes[entryFace(order[i + kBoxPrefetch])]);
                         const int face = entryFace(order[i]);
                         const SampleBox& box = boxes[face];
                         const int first = (std::max(box.rowBegin, y0) - y0) / paintRows;
@@ -978,8 +980,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     for (size_t next = orderSize; next > 0;) {
                         int count = 0;
                         for (; next > 0 && count < kBatch; next--)
-                            if (!sliced || (order[next - 1] >> (32 + slice) & 1))
-                                batchFaces[count++] = entryFace(order[next - 1]);
+                            if (!sliced || (order[next - 1] >> (32 + slice) & 1)) {
+                                const int face = entryFace(order[next - 1]);
+                                __builtin_prefetch(&boxes[face]);
+                                __builtin_prefetch(&mesh.faces[face]);
+                                batchFaces[count++] = face;
+                            }
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
                             const BatchFace& bf = batch[i];
