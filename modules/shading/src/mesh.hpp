@@ -322,13 +322,13 @@ inline uint64_t rowsBelow(int n)
     return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
 }
 
-/** Rows of a band painted back to front at a time: 32 while that is at most 256 KB of canvas,
-else 16, so the rows being overwritten stay in a core's L2 cache. (Front to back writes each
-pixel once, so a whole band at a time costs nothing there.) */
-inline int paintRowsFor(const Mat& canvas)
+/** log2 of the rows of a band painted back to front at a time: 32 rows while that is at most
+256 KB of canvas, else 16, so the rows being overwritten stay in a core's L2 cache. (Front to
+back writes each pixel once, so a whole band at a time costs nothing there.) */
+inline int paintRowsLog2For(const Mat& canvas)
 {
     const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
-    return rowBytes * 32 <= (256 << 10) ? 32 : 16;
+    return rowBytes * 32 <= (256 << 10) ? 5 : 4;
 }
 
 /** A band's z-buffer bookkeeping: per sample whether this draw wrote it (a bit) and if so the
@@ -620,7 +620,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const bool byDepth = !mesh.depth.empty() || byFaceDepth;
     const int bandShift = bandRowsLog2For(canvas, getNumThreads());
     const int bandRows = 1 << bandShift;
-    const int paintRows = paintRowsFor(canvas);
+    const int paintShift = paintRowsLog2For(canvas);
+    const int paintRows = 1 << paintShift;
     const int bandCount = (size.height + bandRows - 1) / bandRows;
 
     StageTimer timer;
@@ -967,8 +968,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             __builtin_prefetch(&boxes[entryFace(order[i + kBoxPrefetch])]);
                         const int face = entryFace(order[i]);
                         const SampleBox& box = boxes[face];
-                        const int first = (std::max(box.rowBegin, y0) - y0) / paintRows;
-                        const int last = (std::min(box.rowEnd, y1) - 1 - y0) / paintRows;
+                        const int first = (std::max(box.rowBegin, y0) - y0) >> paintShift;
+                        const int last = (std::min(box.rowEnd, y1) - 1 - y0) >> paintShift;
                         const uint32_t slices = (2u << last) - (1u << first);
                         order[i] = uint64_t(slices) << 32 | uint32_t(face);
                     }
