@@ -61,7 +61,7 @@ inline int entryFace(uint64_t entry)
 }
 
 /** Sorts a band's entries by their high word, stably, approximately: the keys are narrowed to
-`keyBits` bits, 16 or 8 (relative to the band's smallest, dropping low bits when the band's keys
+`keyBits` bits, 1 to 16 (relative to the band's smallest, dropping low bits when the band's keys
 span more), which one 8-bit LSD radix pass per byte sorts; entries with equal narrowed keys may
 still be out of order (refineEqualKeys completes the order). The entries' high words become the
 narrowed keys. Returns where the sorted entries are: `items`, or `scratch` after an odd number of
@@ -92,7 +92,7 @@ inline uint64_t* sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t
     scratch.resize(std::max(scratch.size(), n));
     uint64_t* src = items;
     uint64_t* dst = scratch.data();
-    for (int pass = 0; pass < keyBits / 8; pass++) {
+    for (int pass = 0; pass < (keyBits + 7) / 8; pass++) {
         const int shift = 32 + 8 * pass;
         uint32_t* c = count[pass];
         if (c[(items[0] >> shift) & 0xff] == n)
@@ -839,8 +839,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const size_t orderSize = bandStart[band + 1] - bandStart[band];
             if (byDepth && depthTested) {
                 // The depth test decides every sample whatever the order: the order only lets
-                // nearer faces hide farther ones before setup, for which 256 levels will do.
-                order = sortBandEntries(order, orderSize, scratch, 8);
+                // nearer faces hide farther ones before setup, for which 16 levels will do.
+                // Coarse levels keep long runs of neighbouring faces (decreasing face order
+                // within a level), whose vertices and canvas rows are then still in cache:
+                // 16 levels instead of 256 took the million-face torus 2-8% less time.
+                order = sortBandEntries(order, orderSize, scratch, 4);
             } else if (byDepth) {
                 order = sortBandEntries(order, orderSize, scratch);
                 refineEqualKeys(order, orderSize, faceKeys, refineRun);
