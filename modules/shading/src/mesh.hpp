@@ -967,8 +967,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 const bool sliced = y1 - y0 > paintRows;
                 if (sliced)
                     for (size_t i = 0; i < orderSize; i++) {
-                        if (i + kBoxPrefetch < orderSize)
-                            __builtin_prefetch(&boxes[entryFace(order[i + kBoxPrefetch])]);
+                        // A short loop: its boxes are asked for far ahead.
+                        if (i + 4 * kBoxPrefetch < orderSize)
+                            __builtin_prefetch(&boxes[entryFace(order[i + 4 * kBoxPrefetch])]);
                         const int face = entryFace(order[i]);
                         const SampleBox& box = boxes[face];
                         const int first = (std::max(box.rowBegin, y0) - y0) >> paintShift;
