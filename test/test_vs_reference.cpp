@@ -857,6 +857,19 @@ TEST(ShadingVsReference, DrawMeshInfiniteDepths)
     expectRandomMeshesMatch(scaledSeed(137), scaled(3), Depths::Infinite);
 }
 
+// Bands of more than 8192 faces sort on 24-bit keys instead of 16 (mesh.hpp): 12,000 random
+// faces on a 64 x 40 canvas, two bands, each reached by most faces.
+TEST(ShadingVsReference, DrawMeshBandsOfManyFaces)
+{
+    cv::RNG rng(scaledSeed(139));
+    for (Depths depths : { Depths::Random, Depths::Ties, Depths::Crowded })
+        for (bool gouraud : { false, true }) {
+            const Mesh m = randomMesh(rng, cv::Size(64, 40), 2000, 12000, depths, false);
+            EXPECT_TRUE(meshMatches(m, cv::Size(64, 40), CV_32FC3, gouraud))
+                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " depths " << int(depths);
+        }
+}
+
 TEST(ShadingVsReference, DrawMeshEmptyDepthKeepsFaceOrder)
 {
     expectRandomMeshesMatch(scaledSeed(93), scaled(4), Depths::None);

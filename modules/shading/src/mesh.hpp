@@ -61,7 +61,7 @@ inline int entryFace(uint64_t entry)
 }
 
 /** Sorts a band's entries by their high word, stably, approximately: the keys are narrowed to
-`keyBits` bits, 1 to 16 (relative to the band's smallest, dropping low bits when the band's keys
+`keyBits` bits, 1 to 24 (relative to the band's smallest, dropping low bits when the band's keys
 span more), which one 8-bit LSD radix pass per byte sorts; entries with equal narrowed keys may
 still be out of order (refineEqualKeys completes the order). The entries' high words become the
 narrowed keys. Returns where the sorted entries are: `items`, or `scratch` after an odd number of
@@ -69,7 +69,7 @@ passes (valid until scratch is next resized; copying them back would cost a pass
 inline uint64_t* sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t>& scratch,
                                  int keyBits = 16)
 {
-    CV_DbgAssert(keyBits >= 1 && keyBits <= 16);  // 0 bits would never narrow
+    CV_DbgAssert(keyBits >= 1 && keyBits <= 24);  // 0 bits would never narrow
     if (n < 2)
         return items;
     uint32_t lo = UINT32_MAX, hi = 0;
@@ -82,13 +82,15 @@ inline uint64_t* sortBandEntries(uint64_t* items, size_t n, std::vector<uint64_t
     int drop = 0;
     while (((hi - lo) >> drop) > keyMax)
         drop++;
-    uint32_t count[2][256] = {};
+    uint32_t count[3][256] = {};
     for (size_t i = 0; i < n; i++) {
         const uint32_t key = (uint32_t(items[i] >> 32) - lo) >> drop;
         items[i] = uint64_t(key) << 32 | uint32_t(items[i]);
         count[0][key & 0xff]++;
         if (keyBits > 8)  // one pass: no second byte to count
-            count[1][key >> 8]++;
+            count[1][(key >> 8) & 0xff]++;
+        if (keyBits > 16)
+            count[2][key >> 16]++;
     }
     scratch.resize(std::max(scratch.size(), n));
     uint64_t* src = items;
@@ -848,7 +850,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // 16 levels instead of 256 took the million-face torus 2-6% less time.
                 order = sortBandEntries(order, orderSize, scratch, 4);
             } else if (byDepth) {
-                order = sortBandEntries(order, orderSize, scratch);
+                // Entries sharing a narrowed key have their exact depths gathered and compared
+                // (refineEqualKeys), from all over the key array: in a band of tens of thousands
+                // of faces, 16 bits leave many to compare, and a third radix pass costs less.
+                constexpr size_t kWideKeyEntries = 8192;
+                order = sortBandEntries(order, orderSize, scratch,
+                                        orderSize > kWideKeyEntries ? 24 : 16);
                 refineEqualKeys(order, orderSize, faceKeys, refineRun);
             }
 
