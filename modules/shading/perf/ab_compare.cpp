@@ -7,7 +7,7 @@
 // them apart. This program loads two builds of libopencv_shading (say main's and a change's),
 // calls them in alternate frames on the same scene, and prints the medians and their ratio per
 // round, plus the largest difference between the two builds' images (0: the change keeps every
-// pixel). A build against a copy of itself gives 0.99-1.01 here.
+// pixel). A build against a copy of itself gives 0.99-1.02 here.
 //
 //   usage: opencv_shading_ab OLD_LIB NEW_LIB SCENE [SHADE [VISIBILITY]]
 //                            [--threads N] [--frames N] [--rounds N]
