@@ -32,7 +32,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -177,11 +176,11 @@ int main(int argc, char** argv)
                 if (zbuffer)
                     depths[k].create(scene3d.size, CV_32F);
                 const shading_perf::Mesh3d& m = scene3d.mesh;
-                (k == 0 ? draw0 : draw1)(
-                    images[k], m.verts3d, m.faces, m.vcolors, scene3d.cameraMatrix, scene3d.rvec,
-                    scene3d.tvec, settings, m.normals,
-                    zbuffer ? cv::_InputOutputArray(depths[k]) : cv::_InputOutputArray(cv::noArray()),
-                    cv::noArray());
+                const cv::_InputOutputArray depth = zbuffer ? cv::_InputOutputArray(depths[k])
+                                                            : cv::_InputOutputArray(cv::noArray());
+                (k == 0 ? draw0 : draw1)(images[k], m.verts3d, m.faces, m.vcolors,
+                                         scene3d.cameraMatrix, scene3d.rvec, scene3d.tvec,
+                                         settings, m.normals, depth, cv::noArray());
             };
         } else {
             scene2d = shading_perf::makeScene(kind, side);
