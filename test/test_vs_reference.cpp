@@ -870,6 +870,58 @@ TEST(ShadingVsReference, DrawMeshBandsOfManyFaces)
         }
 }
 
+namespace {
+
+// nf small triangles (a few pixels, subpixel corners, all wound the same way) scattered over the
+// canvas, each with its own vertices: little overdraw, but many overlaps, which the library draws
+// in face order with a depth test per sample instead of sorting (mesh.hpp).
+Mesh smallFacesMesh(cv::RNG& rng, cv::Size size, int nf, Depths depths)
+{
+    Mesh m;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < nf; f++) {
+        const Point2d c(rng.uniform(-2.0, size.width + 2.0), rng.uniform(-2.0, size.height + 2.0));
+        Point2d p[3];
+        for (Point2d& q : p)
+            q = c + Point2d(std::round(rng.uniform(-3.0, 3.0) * 4) / 4,
+                            std::round(rng.uniform(-3.0, 3.0) * 4) / 4);
+        if ((p[1] - p[0]).cross(p[2] - p[0]) < 0)
+            std::swap(p[1], p[2]);
+        const Vec3d colour = randomColour(rng, 0, 1);
+        const double faceDepth = depths == Depths::Ties     ? double(rng.uniform(0, 3))
+                                 : depths == Depths::Infinite ? (rng.uniform(0, 3) ? 1.0 : inf)
+                                                              : rng.uniform(-1.0, 1.0);
+        for (int k = 0; k < 3; k++) {
+            m.verts.push_back(p[k]);
+            m.colors.push_back(k ? randomColour(rng, 0, 1) : colour);
+            // Equal vertex depths give the face exactly that mean, so Ties ties exactly.
+            m.depth.push_back(depths == Depths::Random ? faceDepth + rng.uniform(-0.1, 0.1)
+                                                       : faceDepth);
+        }
+        m.faces.push_back(cv::Vec3i(3 * f, 3 * f + 1, 3 * f + 2));
+    }
+    return m;
+}
+
+}  // namespace
+
+// Bands with little overdraw are drawn in face order, each sample keeping the nearest face so far
+// (the later one on a tie): small faces overlapping a few times, on a canvas of one band and on a
+// wide one whose bands are drawn 16 rows at a time, with random, tied and infinite depths.
+TEST(ShadingVsReference, DrawMeshSmallFacesInFaceOrder)
+{
+    cv::RNG rng(scaledSeed(141));
+    for (const cv::Size size : { cv::Size(96, 72), cv::Size(2048, 40) })
+        for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
+            for (bool gouraud : { false, true }) {
+                const int faces = size.area() / 5;  // about 1.5 layers of 7-pixel faces
+                const Mesh m = smallFacesMesh(rng, size, faces, depths);
+                EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud))
+                    << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " depths "
+                    << int(depths) << " canvas " << size;
+            }
+}
+
 TEST(ShadingVsReference, DrawMeshEmptyDepthKeepsFaceOrder)
 {
     expectRandomMeshesMatch(scaledSeed(93), scaled(4), Depths::None);

@@ -2,9 +2,10 @@
 //
 // Mesh drawing on the core: the painter's image (faces far to near, each overwriting).
 //
-// The canvas is cut into bands of rows, rendered in parallel. Each band sorts its own faces and
+// The canvas is cut into bands of rows, rendered in parallel. Each band orders its own faces and
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw
-// is painted back to front; one with more (or with a closed surface's hidden back faces) is built
+// is painted in face order, unsorted, each sample keeping the nearest face so far (the later on a
+// tie); one with more (or with a closed surface's hidden back faces) is sorted and built
 // front to back, where a coverage bit mask keeps the first (frontmost) write of each pixel:
 // exactly what the painter's algorithm leaves visible, with each pixel written once, and a face
 // whose sample box is already final is skipped before setup. Per face, only a depth, a sample box
@@ -309,6 +310,25 @@ private:
     std::vector<uint64_t> bits_;
 };
 
+/** The depth test that draws the painter's image in face order: the samples of [xBegin, xEnd)
+whose nearest depth so far (`nearest`, +inf where none) is not nearer than `depth` take it, and
+`fn(a, b)` is called for each maximal run [a, b) of them. A face drawn later wins a tie, as the
+painter's stable order draws it on top. */
+template <typename RunFn>
+__attribute__((always_inline)) inline void takeNearerOrEqual(double* nearest, int xBegin,
+                                                             int xEnd, double depth, RunFn&& fn)
+{
+    for (int x = xBegin; x < xEnd;) {
+        while (x < xEnd && nearest[x] < depth)  // behind a nearer face
+            x++;
+        const int runBegin = x;
+        for (; x < xEnd && !(nearest[x] < depth); x++)
+            nearest[x] = depth;
+        if (runBegin < x)
+            fn(runBegin, x);
+    }
+}
+
 /** log2 of the rows per band: 64 (the most the band pass's row bit masks hold) when that still
 leaves at least 8 bands per thread, else 32. Taller bands mean fewer faces crossing a band
 boundary, each sorted, tested and set up once per band it crosses: 32 rows instead of 16 cut the
@@ -325,9 +345,10 @@ inline uint64_t rowsBelow(int n)
     return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
 }
 
-/** log2 of the rows of a band painted back to front at a time: 32 rows while that is at most
-256 KB of canvas, else 16, so the rows being overwritten stay in a core's L2 cache. (Front to
-back writes each pixel once, so a whole band at a time costs nothing there.) */
+/** log2 of the rows of a band painted in face order at a time: 32 rows while that is at most
+256 KB of canvas, else 16, so the rows being overwritten, and their depths (two thirds as much
+again for float RGB), stay in a core's L2 cache. (Front to back writes each pixel once, so a
+whole band at a time costs nothing there.) */
 inline int paintRowsLog2For(const Mat& canvas)
 {
     const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
@@ -455,13 +476,14 @@ struct BandWorkspace {
     ZBufferBlocks zbuffer;           //!< depth-tested drawing: see BandOptions
     std::vector<float> keptWeights;  //!< deferred: per band sample, its kept face's weights
     std::vector<int> keptFaces;      //!< deferred painter's: per band sample, its face
+    std::vector<double> sliceDepths;  //!< painted in face order: per slice sample, its depth
 
     size_t capacityBytes() const
     {
         return coverage.capacityBytes() + scratch.capacity() * sizeof(uint64_t) +
                refineRun.capacity() * sizeof(refineRun[0]) + tile.capacity() +
                zbuffer.capacityBytes() + keptWeights.capacity() * sizeof(float) +
-               keptFaces.capacity() * sizeof(int);
+               keptFaces.capacity() * sizeof(int) + sliceDepths.capacity() * sizeof(double);
     }
 
     static BandWorkspace& ofThisThread()
@@ -806,6 +828,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         ZBufferBlocks zbuffer = std::move(threadBuffers.zbuffer);
         std::vector<float> keptWeights = std::move(threadBuffers.keptWeights);
         std::vector<int> keptFaces = std::move(threadBuffers.keptFaces);
+        std::vector<double> sliceDepths = std::move(threadBuffers.sliceDepths);
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -816,12 +839,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                       "batch entries are overwritten in place, never destroyed");
         constexpr int kBatch = 32;
         constexpr size_t kBoxPrefetch = 16;  // entries ahead of the occlusion test
-        // Entries ahead of the back-to-front slicing loop: a short loop, so farther ahead.
-        constexpr size_t kSliceBoxPrefetch = 64;
-        // A band is drawn back to front, without a coverage mask, when the samples it would
+        // A band is drawn in face order, without a coverage mask, when the samples it would
         // shade more than once (estimated from face areas) are fewer than this many per face:
         // rewriting a few pixels costs less than the mask's work on every span of small faces.
-        constexpr double kOverdrawPerFaceBackToFront = 32;
+        constexpr double kOverdrawPerFaceInFaceOrder = 32;
         // Also front to back: bands of small faces (at most this many samples each) wound both
         // ways, at least a quarter of them each way. That is a closed surface seen with its back
         // faces, which are hidden: the coverage test skips them whole, before any setup. (Big
@@ -838,11 +859,21 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
 #endif
             const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
             shaders.beginBand(y0, y1);
+            uint64_t* order = binned.data() + bandStart[band];  // decreasing face order
+            const size_t orderSize = bandStart[band + 1] - bandStart[band];
+            const double overdraw = bandArea[band] - double(y1 - y0) * width;
+            const size_t windingMinority =
+                std::min(bandClockwise[band], orderSize - bandClockwise[band]);
+            const bool closedSurface = 4 * windingMinority >= orderSize &&
+                                       bandArea[band] <= kSmallFaceSamples * double(orderSize);
+            const bool inFaceOrder = !depthTested && !options.frontToBack &&
+                                     overdraw <= kOverdrawPerFaceInFaceOrder * double(orderSize) &&
+                                     !closedSurface;
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
-            uint64_t* order = binned.data() + bandStart[band];
-            const size_t orderSize = bandStart[band + 1] - bandStart[band];
-            if (byDepth && depthTested) {
+            if (inFaceOrder) {
+                // Drawn in face order with a depth test per sample (see below): no sort.
+            } else if (byDepth && depthTested) {
                 // The depth test decides every sample whatever the order: the order only lets
                 // nearer faces hide farther ones before setup, for which 16 levels will do.
                 // Coarse levels keep long runs of neighbouring faces (decreasing face order
@@ -908,11 +939,6 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             };
             int batchFaces[kBatch];
 
-            const double overdraw = bandArea[band] - double(y1 - y0) * width;
-            const size_t windingMinority =
-                std::min(bandClockwise[band], orderSize - bandClockwise[band]);
-            const bool closedSurface = 4 * windingMinority >= orderSize &&
-                                       bandArea[band] <= kSmallFaceSamples * double(orderSize);
             if constexpr (Shaders::kZBuffer) {
                 if (depthTested) {
                     // Nearest faces first; each tests its samples against (depth, face) kept.
@@ -968,17 +994,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     continue;
                 }
             }
-            if (!options.frontToBack &&
-                overdraw <= kOverdrawPerFaceBackToFront * double(orderSize) && !closedSurface) {
-                // Little overdraw: the painter's way is cheaper here. Background first, then
-                // every face back to front, overwriting; no coverage bookkeeping. A slice of
-                // rows at a time, so that what is overwritten is still in cache. The entries'
-                // sort keys, no longer needed, become the slices each face's box reaches.
+            if (inFaceOrder) {
+                // Little overdraw: no sort and no coverage bookkeeping. Background first, then
+                // every face in face order, each sample taking a face at least as near as the
+                // nearest drawn there so far (takeNearerOrEqual): the painter's image, since the
+                // nearest face wins and, among equally near ones, the last. Faces are read in
+                // the order the arrays hold them, which the memory system streams, instead of
+                // from all over them in depth order. A slice of rows at a time, so that what is
+                // overwritten (and the slice's depths) stays in cache. The entries' sort keys,
+                // not needed, become the slices each face's box reaches.
                 const bool sliced = y1 - y0 > paintRows;
                 if (sliced)
                     for (size_t i = 0; i < orderSize; i++) {
-                        if (i + kSliceBoxPrefetch < orderSize)
-                            __builtin_prefetch(&boxes[entryFace(order[i + kSliceBoxPrefetch])]);
                         const int face = entryFace(order[i]);
                         const SampleBox& box = boxes[face];
                         const int first = (std::max(box.rowBegin, y0) - y0) >> paintShift;
@@ -986,29 +1013,36 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         const uint32_t slices = (2u << last) - (1u << first);
                         order[i] = uint64_t(slices) << 32 | uint32_t(face);
                     }
+                if (byDepth)
+                    sliceDepths.resize(size_t(std::min(paintRows, y1 - y0)) * width);
                 for (int s0 = y0, slice = 0; s0 < y1; s0 += paintRows, slice++) {
                     const int s1 = std::min(y1, s0 + paintRows);
                     if (background)
                         for (int y = s0; y < s1; y++)
                             fillPixels(canvas.ptr<T>(y), 0, width, background->val);
-                    for (size_t next = orderSize; next > 0;) {
+                    if (byDepth)
+                        std::fill(sliceDepths.begin(), sliceDepths.begin() + size_t(s1 - s0) * width,
+                                  inf);
+                    for (size_t next = orderSize; next > 0;) {  // increasing face order
                         int count = 0;
                         for (; next > 0 && count < kBatch; next--)
-                            if (!sliced || (order[next - 1] >> (32 + slice) & 1)) {
-                                // Faces in depth order, from all over the arrays: read by
-                                // prepareBatch once the batch is full.
-                                const int face = entryFace(order[next - 1]);
-                                __builtin_prefetch(&boxes[face]);
-                                __builtin_prefetch(&mesh.faces[face]);
-                                batchFaces[count++] = face;
-                            }
+                            if (!sliced || (order[next - 1] >> (32 + slice) & 1))
+                                batchFaces[count++] = entryFace(order[next - 1]);
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
                             const BatchFace& bf = batch[i];
+                            const double depth = byDepth ? faceKeys[bf.face] : 0.0;
                             walkTriangle(bf.triangle, s0, s1, width,
                                          [&](int y, int xBegin, int xEnd) {
                                 T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
-                                bf.shader(bf.triangle, row, y, xBegin, xBegin, xEnd);
+                                if (!byDepth) {  // face order is the painter's
+                                    bf.shader(bf.triangle, row, y, xBegin, xBegin, xEnd);
+                                    return;
+                                }
+                                takeNearerOrEqual(sliceDepths.data() + size_t(y - s0) * width,
+                                                  xBegin, xEnd, depth, [&](int a, int b) {
+                                    bf.shader(bf.triangle, row, y, xBegin, a, b);
+                                });
                             });
                         }
                     }
@@ -1128,7 +1162,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         threadBuffers = BandWorkspace{std::move(coverage), std::move(scratch),
                                       std::move(refineRun), std::move(tile),
                                       std::move(zbuffer), std::move(keptWeights),
-                                      std::move(keptFaces)};
+                                      std::move(keptFaces), std::move(sliceDepths)};
         if (threadBuffers.capacityBytes() > MeshWorkspace::kKeepBytes)
             threadBuffers = BandWorkspace();
 #if OPENCV_SHADING_STAGE_TIMES
