@@ -907,7 +907,7 @@ Mesh smallFacesMesh(cv::RNG& rng, cv::Size size, int nf, Depths depths)
 
 // Bands with little overdraw are drawn in face order, each sample keeping the nearest face so far
 // (the later one on a tie): small faces overlapping a few times, on a canvas of one band and on a
-// wide one whose bands are drawn 16 rows at a time, with random, tied and infinite depths.
+// wide one of two, with random, tied and infinite depths.
 TEST(ShadingVsReference, DrawMeshSmallFacesInFaceOrder)
 {
     cv::RNG rng(scaledSeed(141));
