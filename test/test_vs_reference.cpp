@@ -895,8 +895,9 @@ Mesh smallFacesMesh(cv::RNG& rng, cv::Size size, int nf, Depths depths)
             m.verts.push_back(p[k]);
             m.colors.push_back(k ? randomColour(rng, 0, 1) : colour);
             // Equal vertex depths give the face exactly that mean, so Ties ties exactly.
-            m.depth.push_back(depths == Depths::Random ? faceDepth + rng.uniform(-0.1, 0.1)
-                                                       : faceDepth);
+            if (depths != Depths::None)
+                m.depth.push_back(depths == Depths::Random ? faceDepth + rng.uniform(-0.1, 0.1)
+                                                           : faceDepth);
         }
         m.faces.push_back(cv::Vec3i(3 * f, 3 * f + 1, 3 * f + 2));
     }
@@ -907,12 +908,12 @@ Mesh smallFacesMesh(cv::RNG& rng, cv::Size size, int nf, Depths depths)
 
 // Bands with little overdraw are drawn in face order, each sample keeping the nearest face so far
 // (the later one on a tie): small faces overlapping a few times, on a canvas of one band and on a
-// wide one of two, with random, tied and infinite depths.
+// wide one of two, with random, tied and infinite depths, and none (face order alone).
 TEST(ShadingVsReference, DrawMeshSmallFacesInFaceOrder)
 {
     cv::RNG rng(scaledSeed(141));
     for (const cv::Size size : { cv::Size(96, 72), cv::Size(2048, 40) })
-        for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
+        for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite, Depths::None })
             for (bool gouraud : { false, true }) {
                 const int faces = size.area() / 5;  // about 1.5 layers of 7-pixel faces
                 const Mesh m = smallFacesMesh(rng, size, faces, depths);

@@ -4,9 +4,10 @@
 //
 // The canvas is cut into bands of rows, rendered in parallel. Each band orders its own faces and
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw
-// is painted in face order, unsorted, each sample keeping the nearest face so far (the later on a
-// tie); one with more (or with a closed surface's hidden back faces) is sorted and built
-// front to back, where a coverage bit mask keeps the first (frontmost) write of each pixel:
+// is painted: small faces in face order, unsorted, each sample keeping the nearest face so far
+// (the later on a tie), bigger ones sorted, back to front. One with more (or with a closed
+// surface's hidden back faces) is sorted and built front to back, where a coverage bit mask
+// keeps the first (frontmost) write of each pixel:
 // exactly what the painter's algorithm leaves visible, with each pixel written once, and a face
 // whose sample box is already final is skipped before setup. Per face, only a depth, a sample box
 // and its bin entries are kept between passes: setup happens in the band that draws the face.
@@ -329,6 +330,15 @@ __attribute__((always_inline)) inline void takeNearerOrEqual(double* nearest, in
     }
 }
 
+/** log2 of the rows of a band painted back to front at a time: 32 rows while that is at most
+256 KB of canvas, else 16, so the rows being overwritten stay in a core's L2 cache. (Front to
+back writes each pixel once, so a whole band at a time costs nothing there.) */
+inline int paintRowsLog2For(const Mat& canvas)
+{
+    const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
+    return rowBytes * 32 <= (256 << 10) ? 5 : 4;
+}
+
 /** log2 of the rows per band: 64 (the most the band pass's row bit masks hold) when that still
 leaves at least 8 bands per thread, else 32. Taller bands mean fewer faces crossing a band
 boundary, each sorted, tested and set up once per band it crosses: 32 rows instead of 16 cut the
@@ -635,6 +645,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const bool byDepth = !mesh.depth.empty() || byFaceDepth;
     const int bandShift = bandRowsLog2For(canvas, getNumThreads());
     const int bandRows = 1 << bandShift;
+    const int paintShift = paintRowsLog2For(canvas);
+    const int paintRows = 1 << paintShift;
     const int bandCount = (size.height + bandRows - 1) / bandRows;
 
     StageTimer timer;
@@ -828,14 +840,21 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                       "batch entries are overwritten in place, never destroyed");
         constexpr int kBatch = 32;
         constexpr size_t kBoxPrefetch = 16;  // entries ahead of the occlusion test
-        // A band is drawn in face order, without a coverage mask, when the samples it would
-        // shade more than once (estimated from face areas) are fewer than this many per face:
-        // rewriting a few pixels costs less than the mask's work on every span of small faces.
-        constexpr double kOverdrawPerFaceInFaceOrder = 32;
-        // Also front to back: bands of small faces (at most this many samples each) wound both
-        // ways, at least a quarter of them each way. That is a closed surface seen with its back
-        // faces, which are hidden: the coverage test skips them whole, before any setup. (Big
-        // faces gain less: the mask's per-row work grows with them.)
+        // Entries ahead of the back-to-front slicing loop: a short loop, so farther ahead.
+        constexpr size_t kSliceBoxPrefetch = 64;
+        // A band is painted, without a coverage mask, when the samples it would shade more
+        // than once (estimated from face areas) are fewer than this many per face: rewriting a
+        // few pixels costs less than the mask's work on every span of small faces.
+        constexpr double kOverdrawPerFacePainted = 32;
+        // Small faces: at most this many samples each, on average over the band. A painted band
+        // of small faces is drawn in face order, where each face's cost is mostly per face and
+        // the sort's scattered reads are saved; one of bigger faces back to front, sorted, where
+        // the depth test would cost more per sample than the sort does per face (the 2048 x
+        // 2048 grid's 128-sample faces: 1.20-1.35x in face order). Also front to back: bands of
+        // small faces wound both ways, at least a quarter of them each way. That is a closed
+        // surface seen with its back faces, which are hidden: the coverage test skips them
+        // whole, before any setup. (Big faces gain less: the mask's per-row work grows with
+        // them.)
         constexpr double kSmallFaceSamples = 32;
         // Raw storage: the shaders have no default constructor and need none.
         alignas(BatchFace) unsigned char batchStorage[kBatch * sizeof(BatchFace)];
@@ -855,9 +874,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
             const bool closedSurface = 4 * windingMinority >= orderSize &&
                                        bandArea[band] <= kSmallFaceSamples * double(orderSize);
-            const bool inFaceOrder = !depthTested && !options.frontToBack &&
-                                     overdraw <= kOverdrawPerFaceInFaceOrder * double(orderSize) &&
-                                     !closedSurface;
+            const bool littleOverdraw =
+                !depthTested && !options.frontToBack &&
+                overdraw <= kOverdrawPerFacePainted * double(orderSize) && !closedSurface;
+            const bool inFaceOrder =
+                littleOverdraw && bandArea[band] <= kSmallFaceSamples * double(orderSize);
+            const bool backToFront = littleOverdraw && !inFaceOrder;
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
             if (inFaceOrder) {
@@ -1020,6 +1042,53 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                 bf.shader(bf.triangle, row, y, xBegin, a, b);
                             });
                         });
+                    }
+                }
+                continue;
+            }
+
+            if (backToFront) {
+                // Little overdraw and big faces: the painter's way. Background first, then
+                // every face back to front, overwriting; no coverage bookkeeping. A slice of
+                // rows at a time, so that what is overwritten is still in cache. The entries'
+                // sort keys, no longer needed, become the slices each face's box reaches.
+                const bool sliced = y1 - y0 > paintRows;
+                if (sliced)
+                    for (size_t i = 0; i < orderSize; i++) {
+                        if (i + kSliceBoxPrefetch < orderSize)
+                            __builtin_prefetch(&boxes[entryFace(order[i + kSliceBoxPrefetch])]);
+                        const int face = entryFace(order[i]);
+                        const SampleBox& box = boxes[face];
+                        const int first = (std::max(box.rowBegin, y0) - y0) >> paintShift;
+                        const int last = (std::min(box.rowEnd, y1) - 1 - y0) >> paintShift;
+                        const uint32_t slices = (2u << last) - (1u << first);
+                        order[i] = uint64_t(slices) << 32 | uint32_t(face);
+                    }
+                for (int s0 = y0, slice = 0; s0 < y1; s0 += paintRows, slice++) {
+                    const int s1 = std::min(y1, s0 + paintRows);
+                    if (background)
+                        for (int y = s0; y < s1; y++)
+                            fillPixels(canvas.ptr<T>(y), 0, width, background->val);
+                    for (size_t next = orderSize; next > 0;) {
+                        int count = 0;
+                        for (; next > 0 && count < kBatch; next--)
+                            if (!sliced || (order[next - 1] >> (32 + slice) & 1)) {
+                                // Faces in depth order, from all over the arrays: read by
+                                // prepareBatch once the batch is full.
+                                const int face = entryFace(order[next - 1]);
+                                __builtin_prefetch(&boxes[face]);
+                                __builtin_prefetch(&mesh.faces[face]);
+                                batchFaces[count++] = face;
+                            }
+                        const int batchSize = prepareBatch(batchFaces, count);
+                        for (int i = 0; i < batchSize; i++) {
+                            const BatchFace& bf = batch[i];
+                            walkTriangle(bf.triangle, s0, s1, width,
+                                         [&](int y, int xBegin, int xEnd) {
+                                T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                                bf.shader(bf.triangle, row, y, xBegin, xBegin, xEnd);
+                            });
+                        }
                     }
                 }
                 continue;
