@@ -801,9 +801,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const size_t rowBytes = size_t(width) * canvas.elemSize();
     // A canvas this big is not kept in the caches anyway: its front-to-back bands are drawn into
     // a scratch tile, which stays cached, and then streamed out, so that the canvas's lines are
-    // written without first being read (half the memory traffic). Bands drawn in face order are
-    // not: back to front, in slices kept in cache, they gained nothing (the copy cost what the
-    // reads did), and face order writes a band's rows a few at a time, as a sliced band did.
+    // written without first being read (half the memory traffic). Painted bands are not: drawn
+    // back to front in slices kept in cache, or in face order, which writes a band's rows a few
+    // at a time, they gained nothing from the tile (the copy cost what the reads did).
     constexpr size_t kStreamedCanvasBytes = size_t(16) << 20;
     const bool streamBands = background && rowBytes * size.height >= kStreamedCanvasBytes;
     std::vector<double> bandCost(bandCount);
