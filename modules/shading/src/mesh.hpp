@@ -330,15 +330,6 @@ __attribute__((always_inline)) inline void takeNearerOrEqual(double* nearest, in
     }
 }
 
-/** log2 of the rows of a band painted back to front at a time: 32 rows while that is at most
-256 KB of canvas, else 16, so the rows being overwritten stay in a core's L2 cache. (Front to
-back writes each pixel once, so a whole band at a time costs nothing there.) */
-inline int paintRowsLog2For(const Mat& canvas)
-{
-    const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
-    return rowBytes * 32 <= (256 << 10) ? 5 : 4;
-}
-
 /** log2 of the rows per band: 64 (the most the band pass's row bit masks hold) when that still
 leaves at least 8 bands per thread, else 32. Taller bands mean fewer faces crossing a band
 boundary, each sorted, tested and set up once per band it crosses: 32 rows instead of 16 cut the
@@ -353,6 +344,15 @@ inline int bandRowsLog2For(const Mat& canvas, int threads)
 inline uint64_t rowsBelow(int n)
 {
     return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
+}
+
+/** log2 of the rows of a band painted back to front at a time: 32 rows while that is at most
+256 KB of canvas, else 16, so the rows being overwritten stay in a core's L2 cache. (Front to
+back writes each pixel once, so a whole band at a time costs nothing there.) */
+inline int paintRowsLog2For(const Mat& canvas)
+{
+    const size_t rowBytes = size_t(canvas.cols) * canvas.elemSize();
+    return rowBytes * 32 <= (256 << 10) ? 5 : 4;
 }
 
 /** A band's z-buffer bookkeeping: per sample whether this draw wrote it (a bit) and if so the
