@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -528,17 +529,26 @@ public:
     void mark(const char* stage)
     {
 #if OPENCV_SHADING_STAGE_TIMES
+        // Printed once the draw is done: a write to stderr between stages would be timed too.
         const int64 now = getTickCount();
-        std::fprintf(stderr, "%s %.3f ms%s", stage, double(now - last_) * 1000.0 / getTickFrequency(),
-                     std::strcmp(stage, "bands") == 0 ? "\n" : ", ");
-        last_ = now;
+        line_ += format("%s %.3f ms%s", stage, double(now - last_) * 1000.0 / getTickFrequency(),
+                        std::strcmp(stage, "bands") == 0 ? "\n" : ", ");
+        if (std::strcmp(stage, "bands") == 0)
+            std::fputs(line_.c_str(), stderr);
+        last_ = getTickCount();
 #else
         (void)stage;
 #endif
     }
 
+#if OPENCV_SHADING_STAGE_TIMES
+    //! Adds `text` to the line printed at the end.
+    void note(const std::string& text) { line_ += text; }
+#endif
+
 private:
 #if OPENCV_SHADING_STAGE_TIMES
+    std::string line_;
     int64 last_ = getTickCount();
 #endif
 };
@@ -1217,8 +1227,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
 #if OPENCV_SHADING_STAGE_TIMES
     // When each worker finished, from the pass's start: how evenly the bands were shared.
     for (size_t w = 0; w < workerTimes.size(); w++)
-        std::fprintf(stderr, "worker%zu %.3f ms (%d bands), ", w, workerTimes[w].first,
-                     workerTimes[w].second);
+        timer.note(format("worker%zu %.3f ms (%d bands), ", w, workerTimes[w].first,
+                          workerTimes[w].second));
 #endif
     timer.mark("bands");
     if (work.capacityBytes() > MeshWorkspace::kKeepBytes)
