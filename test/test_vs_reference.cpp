@@ -228,6 +228,24 @@ double tolerance(int type, bool gouraud)
     return compareCanvases(libA, libB, s, ref, mask, tolerance(type, gouraud));
 }
 
+// matchesReference for the triangle drawn as a one-face mesh (drawMesh): the band pass, in the
+// build the CPU runs (AVX2 where it can), where flats and gouraud take the baseline's walk.
+::testing::AssertionResult meshMatchesReference(const Tri& t, cv::Size size, bool gouraud)
+{
+    const Sentinels s = sentinelsFor(CV_32FC3);
+    cv::Mat libA = filled(size, CV_32FC3, s.a), libB = filled(size, CV_32FC3, s.b);
+    cv::Mat ref = filled(size, CV_32FC3, s.a);
+    const std::vector<Point2d> verts(t.v, t.v + 3);
+    const std::vector<Vec3d> colours(t.c, t.c + 3);
+    const std::vector<cv::Vec3i> faces{cv::Vec3i(0, 1, 2)};
+    const int shade = gouraud ? cv::shading::SHADE_GOURAUD : cv::shading::SHADE_FLAT;
+    cv::shading::drawMesh(libA, verts, faces, colours, cv::noArray(), shade);
+    cv::shading::drawMesh(libB, verts, faces, colours, cv::noArray(), shade);
+    shading_ref::fillTriangle(ref, t.v, t.c, gouraud);
+    const cv::Mat mask = shading_ref::coverageMask(size, t.v);
+    return compareCanvases(libA, libB, s, ref, mask, tolerance(CV_32FC3, gouraud));
+}
+
 // Iteration counts are kept small for a quick suite; set SHADING_REF_SCALE=N in the environment to
 // run N times as many random cases (and with other seeds) for a soak test.
 int scaled(int count)
@@ -415,19 +433,58 @@ TEST(ShadingVsReference, GouraudRandomDoubleTriangles)
     checkGrid(Grid::Double, 4, 600, 8, true);
 }
 
-// Small triangles (a few pixels), where every edge and vertex case shows up at close range.
-TEST(ShadingVsReference, SmallTriangles)
+// Triangles of at most `extent` pixels each way, around the canvas (its edges included), on
+// every grid.
+void checkSmallTriangles(int extent, int count, uint64 seed)
 {
     for (bool gouraud : { false, true })
         for (Grid g : { Grid::Integer, Grid::Half, Grid::Subpixel, Grid::Double })
-            checkMany(300, [&](cv::RNG& rng) {
+            checkMany(count, [&](cv::RNG& rng) {
                 Tri t;
-                const Point2d o(rng.uniform(-2.0, 66.0), rng.uniform(-2.0, 50.0));
+                const Point2d o(rng.uniform(-2.0 - extent / 2, 66.0),
+                                rng.uniform(-2.0 - extent / 2, 50.0));
                 for (Point2d& p : t.v)
-                    p = Point2d(randomCoord(rng, g, std::round(o.x), std::round(o.x) + 4),
-                                randomCoord(rng, g, std::round(o.y), std::round(o.y) + 4));
+                    p = Point2d(randomCoord(rng, g, std::round(o.x), std::round(o.x) + extent),
+                                randomCoord(rng, g, std::round(o.y), std::round(o.y) + extent));
                 return withColours(rng, t, false);
-            }, 100 + (int)g + (gouraud ? 10 : 0), { CV_32FC3 }, gouraud);
+            }, seed + (int)g + (gouraud ? 10 : 0), { CV_32FC3 }, gouraud);
+}
+
+// Small triangles (a few pixels), where every edge and vertex case shows up at close range.
+TEST(ShadingVsReference, SmallTriangles)
+{
+    checkSmallTriangles(4, 300, 100);
+}
+
+// Up to 20 pixels: faces up to 16 columns wide are walked by edge functions, one or more
+// vectors of columns at a time, wider or taller ones by edge walkers. Both as single triangles
+// (the baseline's walk) and as one-face meshes (the band pass's build).
+TEST(ShadingVsReference, SmallTrianglesOfEveryWalk)
+{
+    for (int extent : { 7, 8, 9, 12, 15, 16, 17, 20 }) {
+        checkSmallTriangles(extent, 150, 200 + 20 * extent);
+        cv::RNG rng(scaledSeed(300 + extent));
+        int failures = 0;
+        for (int i = 0, n = scaled(300); i < n && failures < 3; i++) {
+            Tri t;
+            const Grid g = Grid(i % 4);
+            const Point2d o(rng.uniform(-2.0 - extent / 2, 66.0),
+                            rng.uniform(-2.0 - extent / 2, 50.0));
+            for (Point2d& p : t.v)
+                p = Point2d(randomCoord(rng, g, std::round(o.x), std::round(o.x) + extent),
+                            randomCoord(rng, g, std::round(o.y), std::round(o.y) + extent));
+            t = withColours(rng, t, false);
+            for (bool gouraud : { false, true }) {
+                const ::testing::AssertionResult r = meshMatchesReference(t, kSmall, gouraud);
+                if (!r) {
+                    failures++;
+                    ADD_FAILURE() << "mesh face #" << i << " of extent " << extent
+                                  << (gouraud ? " gouraud" : " flat") << "\n  " << describe(t)
+                                  << "\n  " << r.message();
+                }
+            }
+        }
+    }
 }
 
 // Vertices far outside on all sides: large parts are clipped away.

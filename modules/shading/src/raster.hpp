@@ -170,15 +170,16 @@ struct TriangleSetup {
     bool narrow;                   //!< walkers may use 64-bit arithmetic (see EdgeWalker)
     //! For a small triangle (see kSmallColumns), the first sample column of its box; else -1.
     int smallFirstColumn;
-    //! A small triangle's samples all lie within 4 columns from smallFirstColumn.
-    bool smallWithin4Columns;
+    //! A small triangle's samples all lie within this many columns from smallFirstColumn.
+    int smallColumnCount;
 };
 
 /** Triangles at most this many sample columns wide and kSmallRows tall are walked by edge
 functions at all their columns at once (walkSmallTriangle): for the few rows of a small face,
-cheaper than starting three EdgeWalkers, each with its divisions. Within these extents every
-edge function value fits in 32 bits. */
-constexpr int kSmallColumns = 8;
+cheaper than starting two EdgeWalkers, each with its divisions. 16 columns, not 8: 40% of the
+demo knot's faces are 8 to 15 pixels wide. Within these extents every edge function value fits
+in 32 bits (below 2^26). */
+constexpr int kSmallColumns = 16;
 constexpr int kSmallRows = 16;
 
 //! ceil(v / 256), the first pixel row or column at or after fixed-point v, clamped to [0, limit].
@@ -249,13 +250,17 @@ inline bool setupSorted(const FixedPoint p[3], int64_t xMin, int64_t xMax, bool 
     t.mid = p[1];
     t.bottom = p[2];
     t.longEdgeLeft = sign < 0;
-    // Extents below 8 and 16 pixels leave at most 8 sample columns and 16 rows.
+    // Extents below kSmallColumns and kSmallRows pixels leave at most that many columns and rows.
     const bool small = xMax - xMin < kSmallColumns * kSubpixelOne &&
                        p[2].y - p[0].y < kSmallRows * kSubpixelOne;
     t.smallFirstColumn = small ? firstColumnAt(xMin, size.width) : -1;
     // A covered sample x has 256 x < xMax: a sample at the rightmost x lies on a right edge
-    // (the interior is to its left), which the top-left rule leaves out.
-    t.smallWithin4Columns = xMax <= (int64_t(t.smallFirstColumn) + 4) * kSubpixelOne;
+    // (the interior is to its left), which the top-left rule leaves out. So x < ceil(xMax / 256).
+    t.smallColumnCount =
+        small ? int(std::min<int64_t>(((xMax + kSubpixelOne - 1) >> kSubpixelBits) -
+                                          t.smallFirstColumn,
+                                      kSmallColumns))
+              : 0;
     return true;
 }
 
@@ -326,9 +331,75 @@ __attribute__((always_inline)) inline bool setupBoxedTriangle(const FixedPoint i
     return true;
 }
 
+/** The lanes that walkSmallTriangle tests a row's samples in: 8 columns a vector in the AVX2
+build (bands_avx2.cpp), 4 in the baseline. */
+#if CV_SIMD256
+using SmallLanes = v_int32x8;
+inline SmallLanes smallLanesAll(int32_t v) { return v256_setall_s32(v); }
+//! Lane i: a + b * i.
+inline SmallLanes smallLanesRamp(int32_t a, int32_t b)
+{
+    return v256_setall_s32(a) + v256_setall_s32(b) * v_int32x8(0, 1, 2, 3, 4, 5, 6, 7);
+}
+#else
+using SmallLanes = v_int32x4;
+inline SmallLanes smallLanesAll(int32_t v) { return v_setall_s32(v); }
+inline SmallLanes smallLanesRamp(int32_t a, int32_t b)
+{
+    return SmallLanes(a, a + b, a + 2 * b, a + 3 * b);  // no 32-bit multiply in SSE2
+}
+#endif
+constexpr int kSmallLanes = SmallLanes::nlanes;
+
+/** walkSmallTriangle's rows with kGroups vectors of columns: G at the first column of each
+edge's first row (at0), its steps per column and per row, for edges 0-2. */
+template <int kGroups, typename SpanFn>
+__attribute__((always_inline)) inline void walkSmallRows(int begin, int end, int firstColumn,
+                                                         unsigned onCanvas, const int32_t at0[3],
+                                                         const int32_t perColumn[3],
+                                                         const int32_t perRow[3], SpanFn& spanFn)
+{
+    SmallLanes at[3][kGroups], step[3];
+    for (int e = 0; e < 3; e++) {
+        at[e][0] = smallLanesRamp(at0[e], perColumn[e]);
+        for (int g = 1; g < kGroups; g++)
+            at[e][g] = at[e][0] + smallLanesAll(perColumn[e] * kSmallLanes * g);
+        step[e] = smallLanesAll(perRow[e]);
+    }
+    const SmallLanes zero = smallLanesAll(0);
+    for (int row = begin; row < end; row++) {
+        unsigned inside = 0;
+        for (int g = 0; g < kGroups; g++) {
+            inside |= unsigned(v_signmask((at[0][g] > zero) & (at[1][g] > zero) &
+                                          (at[2][g] > zero)))
+                      << (g * kSmallLanes);
+            for (int e = 0; e < 3; e++)
+                at[e][g] += step[e];
+        }
+        inside &= onCanvas;
+        if (inside) {  // a convex shape: the covered samples are contiguous
+            spanFn(row, firstColumn + __builtin_ctz(inside),
+                   firstColumn + 32 - __builtin_clz(inside));
+        }
+    }
+}
+
+/** walkSmallRows with every vector of columns, out of line: inlined beside the one-vector loop,
+it cost a 4-pixel grid 9-20% (the enclosing band loop lost registers, or the walk its inlining). */
+template <typename SpanFn>
+__attribute__((noinline)) void walkWiderSmallRows(int begin, int end, int firstColumn,
+                                                  unsigned onCanvas, const int32_t at0[3],
+                                                  const int32_t perColumn[3],
+                                                  const int32_t perRow[3], SpanFn& spanFn)
+{
+    walkSmallRows<kSmallColumns / kSmallLanes>(begin, end, firstColumn, onCanvas, at0, perColumn,
+                                               perRow, spanFn);
+}
+
 /** walkTriangle for a small triangle (t.smallFirstColumn >= 0) over rows [begin, end): the
-same spans, found by testing the 8 samples of each row from the box's first column against the
-three edges (4 when the covered samples lie within 4 columns, as a grid's 4-pixel cells do).
+same spans, found by testing the samples of each row from the box's first column against the
+three edges, a vector of columns at a time (as many vectors as t.smallColumnCount needs: one
+for a grid's 4-pixel cells).
 
 Edge a -> b (a above b) covers, as the EdgeWalker does, the samples right of or on it when it is
 a left edge (F >= 0, F(p) = (p - a) x (b - a) in subpixels) and those strictly left of it when
@@ -343,78 +414,30 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
     const int firstColumn = t.smallFirstColumn;
     const int64_t ox = int64_t(firstColumn) * kSubpixelOne, oy = int64_t(begin) * kSubpixelOne;
     // G at column 0 of the first row, and its steps per column and per row.
-    auto edgeAt = [&](const FixedPoint& a, const FixedPoint& b, bool left, int32_t& at0,
-                      int32_t& perColumn, int32_t& perRow) {
+    int32_t at0[3], perColumn[3], perRow[3];
+    auto edgeAt = [&](int e, const FixedPoint& a, const FixedPoint& b, bool left) {
         const int64_t dx = b.x - a.x, dy = b.y - a.y;
-        at0 = 1, perColumn = 0, perRow = 0;  // horizontal: always passes
+        at0[e] = 1, perColumn[e] = 0, perRow[e] = 0;  // horizontal: always passes
         if (dy != 0) {
             const int64_t s = left ? 1 : -1;
-            at0 = int32_t(s * ((ox - a.x) * dy - (oy - a.y) * dx) + (left ? 1 : 0));
-            perColumn = int32_t(s * dy * kSubpixelOne);
-            perRow = int32_t(-s * dx * kSubpixelOne);
+            at0[e] = int32_t(s * ((ox - a.x) * dy - (oy - a.y) * dx) + (left ? 1 : 0));
+            perColumn[e] = int32_t(s * dy * kSubpixelOne);
+            perRow[e] = int32_t(-s * dx * kSubpixelOne);
         }
     };
     const bool longLeft = t.longEdgeLeft;
+    edgeAt(0, t.top, t.bottom, longLeft);
+    edgeAt(1, t.top, t.mid, !longLeft);
+    edgeAt(2, t.mid, t.bottom, !longLeft);
     // Columns at or past the canvas's right edge are not tested.
     const unsigned onCanvas = (1u << std::min(kSmallColumns, width - firstColumn)) - 1;
-#if CV_SIMD256
-    // The AVX2 build (bands_avx2.cpp): the 8 columns in one vector.
-    struct EdgeTest8 {
-        v_int32x8 at, perRow;
-    };
-    const v_int32x8 columns(0, 1, 2, 3, 4, 5, 6, 7);
-    auto edgeTest8 = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
-        int32_t at0, perColumn, perRow;
-        edgeAt(a, b, left, at0, perColumn, perRow);
-        return EdgeTest8{v256_setall_s32(at0) + v256_setall_s32(perColumn) * columns,
-                         v256_setall_s32(perRow)};
-    };
-    EdgeTest8 f0 = edgeTest8(t.top, t.bottom, longLeft);
-    EdgeTest8 f1 = edgeTest8(t.top, t.mid, !longLeft);
-    EdgeTest8 f2 = edgeTest8(t.mid, t.bottom, !longLeft);
-    const v_int32x8 zero8 = v256_setzero_s32();
-    for (int row = begin; row < end; row++) {
-        const unsigned inside =
-            unsigned(v_signmask((f0.at > zero8) & (f1.at > zero8) & (f2.at > zero8))) & onCanvas;
-        f0.at += f0.perRow, f1.at += f1.perRow, f2.at += f2.perRow;
-        if (inside) {  // a convex shape: the covered samples are contiguous
-            spanFn(row, firstColumn + __builtin_ctz(inside),
-                   firstColumn + 32 - __builtin_clz(inside));
-        }
-    }
-#else
-    struct EdgeTest {
-        v_int32x4 low, high, perRow;  // G at columns 0-3 and 4-7 of the row; its step per row
-    };
-    const bool wide = !t.smallWithin4Columns;
-    auto edgeTest = [&](const FixedPoint& a, const FixedPoint& b, bool left) {
-        int32_t at0, perColumn, perRow;
-        edgeAt(a, b, left, at0, perColumn, perRow);
-        const v_int32x4 low(at0, at0 + perColumn, at0 + 2 * perColumn, at0 + 3 * perColumn);
-        return EdgeTest{low, low + v_setall_s32(4 * perColumn), v_setall_s32(perRow)};
-    };
-    EdgeTest e0 = edgeTest(t.top, t.bottom, longLeft);
-    EdgeTest e1 = edgeTest(t.top, t.mid, !longLeft);
-    EdgeTest e2 = edgeTest(t.mid, t.bottom, !longLeft);
-    const v_int32x4 zero = v_setzero_s32();
-    for (int row = begin; row < end; row++) {
-        unsigned inside =
-            unsigned(v_signmask((e0.low > zero) & (e1.low > zero) & (e2.low > zero)));
-        e0.low += e0.perRow, e1.low += e1.perRow, e2.low += e2.perRow;
-        if (wide) {  // the same for every row of the face: well predicted
-            inside |= unsigned(v_signmask((e0.high > zero) & (e1.high > zero) &
-                                          (e2.high > zero)))
-                      << 4;
-            e0.high += e0.perRow, e1.high += e1.perRow, e2.high += e2.perRow;
-        }
-        inside &= onCanvas;
-        if (inside) {  // a convex shape: the covered samples are contiguous
-            spanFn(row, firstColumn + __builtin_ctz(inside),
-                   firstColumn + 32 - __builtin_clz(inside));
-        }
-    }
-#endif
+    static_assert(kSmallColumns <= 4 * kSmallLanes, "at most four vectors of columns");
+    if (t.smallColumnCount <= kSmallLanes)
+        walkSmallRows<1>(begin, end, firstColumn, onCanvas, at0, perColumn, perRow, spanFn);
+    else
+        walkWiderSmallRows(begin, end, firstColumn, onCanvas, at0, perColumn, perRow, spanFn);
 }
+
 
 /** Calls spanFn(row, xBegin, xEnd) for every non-empty span of t within rows
 [rowFirst, rowLast) and columns [0, width). One loop over both halves (the short edge restarts at
