@@ -5,7 +5,9 @@
 //   render          cv::shading::render (CV_32FC3, white background), 1 thread and all threads
 //   plain           the plain single-threaded edge-function rasterizer (perf_baselines.hpp)
 //   fillConvexPoly  cv::fillConvexPoly per triangle, flat only
-//   clear           canvas.setTo(white) alone: the floor
+//   clear           canvas.setTo(white) alone
+//   clearRead       the clear plus one read of every value of the scene's arrays (cv::sum, one
+//                   thread): the floor any renderer of the scene must at least pay
 //   llvmpipe        Mesa's llvmpipe through OSMesa, when built with it (perf_llvmpipe.hpp)
 //   machine         pure arithmetic, 1 thread and all threads: how much the extra cores gave
 //
@@ -68,6 +70,9 @@ void addScene(const Scene& sc, int allThreads)
     addBenchmark("fillConvexPoly", sc, "flat", 1,
                  [&sc, fill](cv::Mat& img) { fill->render(sc, img); });
     addBenchmark("clear", sc, nullptr, 1, [&sc](cv::Mat& img) { clearCanvas(img, sc.size); });
+    addBenchmark("clearRead", sc, nullptr, 1, [&sc](cv::Mat& img) {
+        benchmark::DoNotOptimize(clearAndReadScene(img, sc));
+    });
 }
 
 }  // namespace

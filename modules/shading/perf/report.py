@@ -150,6 +150,8 @@ def time_table(res):
         cols += [(f"llvmpipe flat {lt} thr", "llvmpipe", "flat", lt),
                  (f"llvmpipe Gouraud {lt} thr", "llvmpipe", "gouraud", lt)]
     cols.append(("clear", "clear", None, 1))
+    if res.has("clearRead"):
+        cols.append(("clear + read", "clearRead", None, 1))
     rows = [["scene", "triangles"] + [c[0] for c in cols]]
     for s in res.scenes:
         tri = res.counts.get(s, (None, None))[0]
@@ -166,6 +168,9 @@ def ratio_table(res):
     if llvm:
         rows[0] += ["llvmpipe / render flat", "llvmpipe / render Gouraud"]
     rows[0] += ["render flat / clear", "render Gouraud / clear"]
+    floor = res.has("clearRead")
+    if floor:
+        rows[0] += ["render flat / (clear + read)", "render Gouraud / (clear + read)"]
     for s in res.scenes:
         flat, gour = res.get("render", s, "flat"), res.get("render", s, "gouraud")
         row = [s, fmt_ratio(res.get("plain", s, "flat"), flat),
@@ -175,6 +180,9 @@ def ratio_table(res):
             row += [fmt_ratio(res.get("llvmpipe", s, "flat"), flat),
                     fmt_ratio(res.get("llvmpipe", s, "gouraud"), gour)]
         row += [fmt_ratio(flat, res.get("clear", s)), fmt_ratio(gour, res.get("clear", s))]
+        if floor:
+            row += [fmt_ratio(flat, res.get("clearRead", s)),
+                    fmt_ratio(gour, res.get("clearRead", s))]
         rows.append(row)
     return rows
 
