@@ -433,21 +433,25 @@ TEST(ShadingVsReference, GouraudRandomDoubleTriangles)
     checkGrid(Grid::Double, 4, 600, 8, true);
 }
 
-// Triangles of at most `extent` pixels each way, around the canvas (its edges included), on
-// every grid.
+// A triangle of at most `extent` pixels each way on grid g, around the canvas (its edges
+// included), with colours for a float canvas.
+Tri smallTriangle(cv::RNG& rng, Grid g, int extent)
+{
+    Tri t;
+    const Point2d o(rng.uniform(-2.0 - extent / 2, 66.0), rng.uniform(-2.0 - extent / 2, 50.0));
+    for (Point2d& p : t.v)
+        p = Point2d(randomCoord(rng, g, std::round(o.x), std::round(o.x) + extent),
+                    randomCoord(rng, g, std::round(o.y), std::round(o.y) + extent));
+    return withColours(rng, t, false);
+}
+
+// smallTriangle()s on every grid, flat and Gouraud.
 void checkSmallTriangles(int extent, int count, uint64 seed)
 {
     for (bool gouraud : { false, true })
         for (Grid g : { Grid::Integer, Grid::Half, Grid::Subpixel, Grid::Double })
-            checkMany(count, [&](cv::RNG& rng) {
-                Tri t;
-                const Point2d o(rng.uniform(-2.0 - extent / 2, 66.0),
-                                rng.uniform(-2.0 - extent / 2, 50.0));
-                for (Point2d& p : t.v)
-                    p = Point2d(randomCoord(rng, g, std::round(o.x), std::round(o.x) + extent),
-                                randomCoord(rng, g, std::round(o.y), std::round(o.y) + extent));
-                return withColours(rng, t, false);
-            }, seed + (int)g + (gouraud ? 10 : 0), { CV_32FC3 }, gouraud);
+            checkMany(count, [&](cv::RNG& rng) { return smallTriangle(rng, g, extent); },
+                      seed + (int)g + (gouraud ? 10 : 0), { CV_32FC3 }, gouraud);
 }
 
 // Small triangles (a few pixels), where every edge and vertex case shows up at close range.
@@ -466,14 +470,7 @@ TEST(ShadingVsReference, SmallTrianglesOfEveryWalk)
         cv::RNG rng(scaledSeed(300 + extent));
         int failures = 0;
         for (int i = 0, n = scaled(300); i < n && failures < 3; i++) {
-            Tri t;
-            const Grid g = Grid(i % 4);
-            const Point2d o(rng.uniform(-2.0 - extent / 2, 66.0),
-                            rng.uniform(-2.0 - extent / 2, 50.0));
-            for (Point2d& p : t.v)
-                p = Point2d(randomCoord(rng, g, std::round(o.x), std::round(o.x) + extent),
-                            randomCoord(rng, g, std::round(o.y), std::round(o.y) + extent));
-            t = withColours(rng, t, false);
+            const Tri t = smallTriangle(rng, Grid(i % 4), extent);
             for (bool gouraud : { false, true }) {
                 const ::testing::AssertionResult r = meshMatchesReference(t, kSmall, gouraud);
                 if (!r) {

@@ -384,16 +384,22 @@ __attribute__((always_inline)) inline void walkSmallRows(int begin, int end, int
     }
 }
 
-/** walkSmallRows with every vector of columns, out of line: inlined beside the one-vector loop,
-it cost a 4-pixel grid 9-20% (the enclosing band loop lost registers, or the walk its inlining). */
+/** walkSmallRows for faces of `columns` columns that one vector does not hold, out of line:
+inlined beside the one-vector loop, it cost a 4-pixel grid 9-20% (the enclosing band loop lost
+registers, or the walk its inlining). The baseline's 4-lane vectors take two for up to 8 columns
+(2-3% off the demo and sphere512 in that build), four beyond. */
 template <typename SpanFn>
-__attribute__((noinline)) void walkWiderSmallRows(int begin, int end, int firstColumn,
-                                                  unsigned onCanvas, const int32_t at0[3],
+__attribute__((noinline)) void walkWiderSmallRows(int columns, int begin, int end,
+                                                  int firstColumn, unsigned onCanvas,
+                                                  const int32_t at0[3],
                                                   const int32_t perColumn[3],
                                                   const int32_t perRow[3], SpanFn& spanFn)
 {
-    walkSmallRows<kSmallColumns / kSmallLanes>(begin, end, firstColumn, onCanvas, at0, perColumn,
-                                               perRow, spanFn);
+    if (kSmallColumns / kSmallLanes > 2 && columns <= 2 * kSmallLanes)
+        walkSmallRows<2>(begin, end, firstColumn, onCanvas, at0, perColumn, perRow, spanFn);
+    else
+        walkSmallRows<kSmallColumns / kSmallLanes>(begin, end, firstColumn, onCanvas, at0,
+                                                   perColumn, perRow, spanFn);
 }
 
 /** walkTriangle for a small triangle (t.smallFirstColumn >= 0) over rows [begin, end): the
@@ -435,9 +441,9 @@ inline void walkSmallTriangle(const TriangleSetup& t, int begin, int end, int wi
     if (t.smallColumnCount <= kSmallLanes)
         walkSmallRows<1>(begin, end, firstColumn, onCanvas, at0, perColumn, perRow, spanFn);
     else
-        walkWiderSmallRows(begin, end, firstColumn, onCanvas, at0, perColumn, perRow, spanFn);
+        walkWiderSmallRows(t.smallColumnCount, begin, end, firstColumn, onCanvas, at0, perColumn,
+                           perRow, spanFn);
 }
-
 
 /** Calls spanFn(row, xBegin, xEnd) for every non-empty span of t within rows
 [rowFirst, rowLast) and columns [0, width). One loop over both halves (the short edge restarts at
