@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/shading.hpp>
 
+#include <cstdlib>
 #include <set>
 #include <utility>
 #include <vector>
@@ -48,6 +49,27 @@ inline std::set<std::pair<int, int>> flatCoverage(cv::Size size, const std::vect
                 covered.insert({x, y});
     return covered;
 }
+
+/** While alive (with `on`), mesh draws draw every band in two halves, as a thread that has
+finished its own bands draws the ones it takes from another (OPENCV_SHADING_HALF_BANDS). */
+class HalfBands {
+public:
+    explicit HalfBands(bool on) : on_(on)
+    {
+        if (on_)
+            setenv("OPENCV_SHADING_HALF_BANDS", "1", 1);
+    }
+    ~HalfBands()
+    {
+        if (on_)
+            unsetenv("OPENCV_SHADING_HALF_BANDS");
+    }
+    HalfBands(const HalfBands&) = delete;
+    HalfBands& operator=(const HalfBands&) = delete;
+
+private:
+    bool on_;
+};
 
 }  // namespace shading_test
 

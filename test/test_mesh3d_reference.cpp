@@ -30,6 +30,7 @@
 #include <opencv2/shading.hpp>
 
 #include "reference/shading3d_reference.hpp"
+#include "test_common.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -596,10 +597,17 @@ TEST(Mesh3dReference, ThreadCountIndependent)
         const LibOut a = runLib(c.scene, c.canvas, c.depthIn, c.forms);
         cv::setNumThreads(std::max(2, threads));
         const LibOut b = runLib(c.scene, c.canvas, c.depthIn, c.forms);
+        LibOut halves;  // every band drawn in halves, as a thread that steals draws them
+        {
+            shading_test::HalfBands on(true);
+            halves = runLib(c.scene, c.canvas, c.depthIn, c.forms);
+        }
         cv::setNumThreads(threads);
-        EXPECT_EQ(0, cv::norm(a.canvas, b.canvas, cv::NORM_INF)) << i;
-        EXPECT_EQ(0, cv::norm(a.faceIds, b.faceIds, cv::NORM_INF)) << i;
-        EXPECT_EQ(0, std::memcmp(a.depth.data, b.depth.data, a.depth.total() * 4)) << i;
+        for (const LibOut* other : {&b, static_cast<const LibOut*>(&halves)}) {
+            EXPECT_EQ(0, cv::norm(a.canvas, other->canvas, cv::NORM_INF)) << i;
+            EXPECT_EQ(0, cv::norm(a.faceIds, other->faceIds, cv::NORM_INF)) << i;
+            EXPECT_EQ(0, std::memcmp(a.depth.data, other->depth.data, a.depth.total() * 4)) << i;
+        }
     }
 }
 

@@ -25,6 +25,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -331,15 +332,13 @@ __attribute__((always_inline)) inline void takeNearerOrEqual(double* nearest, in
     }
 }
 
-/** log2 of the rows per band: 64 (the most the band pass's row bit masks hold) when that still
-leaves at least 8 bands per thread, else 32. Taller bands mean fewer faces crossing a band
-boundary, each sorted, tested and set up once per band it crosses: 32 rows instead of 16 cut the
-instructions per render by 7% on the 512 x 512 demo, 64 instead of 16 by 13% on the deep random
-2048 x 2048 scene. Fewer bands balance the threads less finely. */
-inline int bandRowsLog2For(const Mat& canvas, int threads)
-{
-    return canvas.rows >= 64 * 8 * threads ? 6 : 5;
-}
+/** log2 of the rows per band: 64, the most the band pass's row bit masks hold. Taller bands mean
+fewer faces crossing a band boundary, each sorted, tested and set up once per band it crosses:
+32 rows instead of 16 cut the instructions per render by 7% on the 512 x 512 demo, 64 instead
+of 16 by 13% on the deep random 2048 x 2048 scene; 64 instead of 32 took the demo 3-6% less
+time with 2 threads, random512 10%. Where that leaves few bands per thread, the threads still
+finish together, as the last ones are shared in halves (BandSchedule). */
+constexpr int kBandRowsLog2 = 6;
 
 //! Bits 0 .. n - 1 set, for n in [0, 64].
 inline uint64_t rowsBelow(int n)
@@ -478,10 +477,12 @@ struct BandWorkspace {
     std::vector<float> keptWeights;  //!< deferred: per band sample, its kept face's weights
     std::vector<int> keptFaces;      //!< deferred painter's: per band sample, its face
     std::vector<double> bandDepths;   //!< painted in face order: per band sample, its depth
+    std::vector<uint64_t> partEntries;  //!< half bands: the entries reaching their rows
 
     size_t capacityBytes() const
     {
-        return coverage.capacityBytes() + scratch.capacity() * sizeof(uint64_t) +
+        return coverage.capacityBytes() +
+               (scratch.capacity() + partEntries.capacity()) * sizeof(uint64_t) +
                refineRun.capacity() * sizeof(refineRun[0]) + tile.capacity() +
                zbuffer.capacityBytes() + keptWeights.capacity() * sizeof(float) +
                keptFaces.capacity() * sizeof(int) + bandDepths.capacity() * sizeof(double);
@@ -553,14 +554,27 @@ private:
 #endif
 };
 
+/** What BandSchedule::next hands out: a band, or one half of its rows. */
+struct BandPart {
+    int band;  //!< -1: none left
+    int half;  //!< -1: the whole band; 0: its upper half of rows; 1: its lower half
+};
+
 /** Hands the bands out to the threads. Each thread owns a run of consecutive bands of about
-equal estimated cost and takes them in order, as neighbouring bands share faces and vertices
-still in its caches; a thread done with its run takes bands from the far end of the run with
-the most left, so that the threads finish together. */
+equal estimated cost and takes them in order, whole, as neighbouring bands share faces and
+vertices still in its caches; a thread done with its run takes half bands from the far end of the
+run with the most left, so that the threads finish within about half a band of each other (a
+whole band's share of faces set up twice, where tall bands would otherwise leave one thread
+waiting for the other's last band). */
 class BandSchedule {
 public:
-    BandSchedule(const std::vector<double>& cost, int workers)
-        : runs_(size_t(std::max(1, std::min(int(cost.size()), workers))))
+    /** `halves`: thieves take half bands (else whole ones, as owners do), for few bands per
+    thread, where one band is a large part of a thread's share. `onlyHalves`: owners too (every
+    band drawn in two halves: for testing that halves draw what whole bands do). */
+    BandSchedule(const std::vector<double>& cost, int workers, bool halves = true,
+                 bool onlyHalves = false)
+        : runs_(size_t(std::max(1, std::min(int(cost.size()), workers)))),
+          halves_(halves || onlyHalves), onlyHalves_(onlyHalves)
     {
         const int bands = int(cost.size()), runs = int(runs_.size());
         double total = 0;
@@ -573,17 +587,19 @@ public:
             const double share = total * (w + 1) / runs;
             while (band < bands && (w == runs - 1 || before + cost[band] / 2 <= share))
                 before += cost[band++];
-            runs_[w].store(uint64_t(first) << 32 | uint32_t(band), std::memory_order_relaxed);
+            // In halves: half h of band k is 2 k + h.
+            runs_[w].store(uint64_t(2 * first) << 32 | uint32_t(2 * band),
+                           std::memory_order_relaxed);
         }
     }
 
     int workers() const { return int(runs_.size()); }
 
-    //! The next band for worker w, or -1 when every band is taken.
-    int next(int w)
+    //! The next band or half band for worker w; band -1 when every one is taken.
+    BandPart next(int w)
     {
-        if (const int band = take(w, true); band >= 0)
-            return band;
+        if (const BandPart part = take(w, true); part.band >= 0)
+            return part;
         for (;;) {
             int victim = -1;
             uint32_t most = 0;
@@ -594,28 +610,38 @@ public:
                     victim = v, most = left;
             }
             if (victim < 0)
-                return -1;
-            if (const int band = take(victim, false); band >= 0)
-                return band;
+                return {-1, -1};
+            if (const BandPart part = take(victim, false); part.band >= 0)
+                return part;
         }
     }
 
 private:
-    //! Claims the first band (or the last) of run w: its index, or -1 when the run is empty.
-    int take(int w, bool first)
+    /** Claims from run w: for its owner, its first band whole (or its first half, the other
+    one taken); for a thief, its last half. Band -1 when the run is empty. */
+    BandPart take(int w, bool owner)
     {
         uint64_t run = runs_[w].load(std::memory_order_relaxed);
         for (;;) {
             const uint32_t begin = uint32_t(run >> 32), end = uint32_t(run);
             if (begin >= end)
-                return -1;
-            const uint64_t taken = first ? run + (uint64_t(1) << 32) : run - 1;
-            if (runs_[w].compare_exchange_weak(run, taken, std::memory_order_relaxed))
-                return int(first ? begin : end - 1);
+                return {-1, -1};
+            // Runs start and end on whole bands, and without halves both ends move by whole
+            // bands: then every claim here is a whole band.
+            const bool whole =
+                owner ? !onlyHalves_ && begin % 2 == 0 && end - begin >= 2 : !halves_;
+            const uint32_t count = whole ? 2 : 1;
+            const uint64_t taken = owner ? run + (uint64_t(count) << 32) : run - count;
+            if (runs_[w].compare_exchange_weak(run, taken, std::memory_order_relaxed)) {
+                const uint32_t half = owner ? begin : end - count;
+                return {int(half / 2), whole ? -1 : int(half % 2)};
+            }
         }
     }
 
-    std::vector<std::atomic<uint64_t>> runs_;  //!< per worker: its first band << 32 | its end
+    //! Per worker: its first half band << 32 | its end, in half bands.
+    std::vector<std::atomic<uint64_t>> runs_;
+    bool halves_, onlyHalves_;
 };
 
 //! A face's cost in a band, in covered samples: setup, sort and tests (~900 instructions)
@@ -653,7 +679,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const bool byFaceDepth = !mesh.faceDepth.empty();
     const bool depthTested = options.depthTested;
     const bool byDepth = !mesh.depth.empty() || byFaceDepth;
-    const int bandShift = bandRowsLog2For(canvas, getNumThreads());
+    const int bandShift = kBandRowsLog2;
     const int bandRows = 1 << bandShift;
     const int paintShift = paintRowsLog2For(canvas);
     const int paintRows = 1 << paintShift;
@@ -819,7 +845,13 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     std::vector<double> bandCost(bandCount);
     for (int k = 0; k < bandCount; k++)
         bandCost[k] = kBandCostPerFace * double(bandStart[k + 1] - bandStart[k]) + bandArea[k];
-    BandSchedule schedule(bandCost, getNumThreads());
+    // The environment variable OPENCV_SHADING_HALF_BANDS=1 has every band drawn in halves, as
+    // thieves draw them (a testing aid: the image must not change). Read per draw, so that a
+    // test can set it.
+    const char* halvesVariable = std::getenv("OPENCV_SHADING_HALF_BANDS");
+    const bool onlyHalves = halvesVariable && std::strcmp(halvesVariable, "1") == 0;
+    BandSchedule schedule(bandCost, getNumThreads(), bandCount < 8 * getNumThreads(),
+                          onlyHalves);
 #if OPENCV_SHADING_STAGE_TIMES
     std::vector<std::pair<double, int>> workerTimes(schedule.workers(), {0.0, 0});
     const int64 bandsStart = getTickCount();
@@ -840,6 +872,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         std::vector<float> keptWeights = std::move(threadBuffers.keptWeights);
         std::vector<int> keptFaces = std::move(threadBuffers.keptFaces);
         std::vector<double> bandDepths = std::move(threadBuffers.bandDepths);
+        std::vector<uint64_t> partEntries = std::move(threadBuffers.partEntries);
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -871,15 +904,23 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         BatchFace* const batch = reinterpret_cast<BatchFace*>(batchStorage);
         // Worker range.start's run, then what is left of the others' (all of them, where one
         // call gets several workers).
-        for (int band; (band = schedule.next(range.start)) >= 0;) {
+        for (BandPart part; (part = schedule.next(range.start)).band >= 0;) {
 #if OPENCV_SHADING_STAGE_TIMES
             workerBands++;
 #endif
-            const int y0 = band * bandRows, y1 = std::min(size.height, y0 + bandRows);
-            shaders.beginBand(y0, y1);
+            const int band = part.band;
+            const int bandY0 = band * bandRows, bandY1 = std::min(size.height, bandY0 + bandRows);
+            int y0 = bandY0, y1 = bandY1;
+            if (part.half >= 0) {
+                y0 = bandY0 + part.half * (bandRows / 2);
+                y1 = std::min(bandY1, y0 + bandRows / 2);
+                if (y0 >= y1)  // the canvas's last band may have no lower half
+                    continue;
+            }
             uint64_t* order = binned.data() + bandStart[band];  // decreasing face order
-            const size_t orderSize = bandStart[band + 1] - bandStart[band];
-            const double overdraw = bandArea[band] - double(y1 - y0) * width;
+            size_t orderSize = bandStart[band + 1] - bandStart[band];
+            // The band's way of drawing, decided for the whole band (halves draw as it does).
+            const double overdraw = bandArea[band] - double(bandY1 - bandY0) * width;
             const size_t windingMinority =
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
             const bool closedSurface = 4 * windingMinority >= orderSize &&
@@ -890,6 +931,19 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const bool inFaceOrder =
                 littleOverdraw && bandArea[band] <= kSmallFaceSamples * double(orderSize);
             const bool backToFront = littleOverdraw && !inFaceOrder;
+            if (part.half >= 0) {
+                // Half a band: its own copy of the entries whose boxes reach its rows, as the
+                // other half may be drawn at the same time and the lists are sorted in place.
+                partEntries.clear();
+                for (size_t i = 0; i < orderSize; i++) {
+                    const SampleBox& box = boxes[entryFace(order[i])];
+                    if (box.rowBegin < y1 && box.rowEnd > y0)
+                        partEntries.push_back(order[i]);
+                }
+                order = partEntries.data();
+                orderSize = partEntries.size();
+            }
+            shaders.beginBand(y0, y1);
             // Front to back is the painter's order reversed: increasing mean depth, and among
             // equal means the later face first (the painter draws it last, on top).
             if (inFaceOrder) {
@@ -1216,7 +1270,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         threadBuffers = BandWorkspace{std::move(coverage), std::move(scratch),
                                       std::move(refineRun), std::move(tile),
                                       std::move(zbuffer), std::move(keptWeights),
-                                      std::move(keptFaces), std::move(bandDepths)};
+                                      std::move(keptFaces), std::move(bandDepths),
+                                      std::move(partEntries)};
         if (threadBuffers.capacityBytes() > MeshWorkspace::kKeepBytes)
             threadBuffers = BandWorkspace();
 #if OPENCV_SHADING_STAGE_TIMES
