@@ -562,10 +562,11 @@ struct BandPart {
 
 /** Hands the bands out to the threads. Each thread owns a run of consecutive bands of about
 equal estimated cost and takes them in order, whole, as neighbouring bands share faces and
-vertices still in its caches; a thread done with its run takes half bands from the far end of the
-run with the most left, so that the threads finish within about half a band of each other (a
-whole band's share of faces set up twice, where tall bands would otherwise leave one thread
-waiting for the other's last band). */
+vertices still in its caches; a thread done with its run takes bands from the far end of the
+run with the most left, so that the threads finish together. With few bands per thread it takes
+half bands, so that they finish within about half a band of each other (setting up twice the
+faces that reach both halves, where a whole band would leave one thread waiting for the other's
+last one). */
 class BandSchedule {
 public:
     /** `halves`: thieves take half bands (else whole ones, as owners do), for few bands per
