@@ -729,62 +729,83 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             for (int k = b.rowBegin >> bandShift; k <= (b.rowEnd - 1) >> bandShift; k++)
                 fn(k);
     };
-    parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
-        for (int chunk = chunks.start; chunk < chunks.end; chunk++) {
-            double lo = inf, hi = -inf;  // over finite depths
-            uint64_t* count = &binCursor[size_t(chunk) * bandCount];
-            double* area = &binArea[size_t(chunk) * bandCount];
-            const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
-            for (int i = chunk * chunkFaces; i < end; i++) {
-                const Vec3i& f = mesh.faces[i];
-                SampleBox& box = boxes[i];
-                box.rowBegin = box.rowEnd = 0;  // culled
-                if (byDepth) {
-                    double key;
-                    if (byFaceDepth) {
-                        key = mesh.faceDepth[i];
-                    } else {
-                        const double d0 = mesh.depth[f[0]], d1 = mesh.depth[f[1]],
-                                     d2 = mesh.depth[f[2]];
-                        key = (d0 + d1 + d2) / 3.0;  // NaN if any is
-                        if (depthTested && !std::isnan(key))
-                            key = std::min({d0, d1, d2});
-                        depths[i] = key;
-                    }
-                    if (std::isnan(key))
-                        continue;  // no place in the order: not drawn
-                    if (std::abs(key) < inf) {
-                        lo = std::min(lo, key);
-                        hi = std::max(hi, key);
-                    }
+    // One loop per way of keying faces, with what it reads in locals: the loop then keeps its
+    // state in registers, with no branch on the way.
+    auto boxFaces = [&](int chunk, auto kByDepth, auto kByFaceDepth, auto kDepthTested) {
+        const Size canvasSize = size;
+        const int shift = bandShift, rowsPerBand = bandRows;
+        const FixedPoint* const vertexAt = snapped;
+        const double* const vertexDepth = mesh.depth.data();
+        const double* const givenKey = mesh.faceDepth.data();
+        double* const faceKey = depths.data();
+        SampleBox* const faceBox = boxes.data();
+        double lo = inf, hi = -inf;  // over finite depths
+        uint64_t* count = &binCursor[size_t(chunk) * bandCount];
+        double* area = &binArea[size_t(chunk) * bandCount];
+        const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
+        for (int i = chunk * chunkFaces; i < end; i++) {
+            const Vec3i& f = mesh.faces[i];
+            SampleBox& box = faceBox[i];
+            box.rowBegin = box.rowEnd = 0;  // culled
+            if constexpr (decltype(kByDepth)::value) {
+                double key;
+                if constexpr (decltype(kByFaceDepth)::value) {
+                    key = givenKey[i];
+                } else {
+                    const double d0 = vertexDepth[f[0]], d1 = vertexDepth[f[1]],
+                                 d2 = vertexDepth[f[2]];
+                    key = (d0 + d1 + d2) / 3.0;  // NaN if any is
+                    if (decltype(kDepthTested)::value && !std::isnan(key))
+                        key = std::min({d0, d1, d2});
+                    faceKey[i] = key;
                 }
-                const FixedPoint p[3] = {snapped[f[0]], snapped[f[1]], snapped[f[2]]};
-                if (!triangleBox(p, size, box)) {
-                    box.rowBegin = box.rowEnd = 0;
-                    continue;
+                if (std::isnan(key))
+                    continue;  // no place in the order: not drawn
+                if (std::abs(key) < inf) {
+                    lo = std::min(lo, key);
+                    hi = std::max(hi, key);
                 }
-                // In pixels, for estimating each band's overdraw; the sign gives the winding.
-                const double signedArea =
-                    (double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
-                     double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
-                    (0.5 / double(kSubpixelOne * kSubpixelOne));
-                const double faceArea = std::abs(signedArea);
-                const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
-                const int firstBand = box.rowBegin >> bandShift;
-                if (firstBand == (box.rowEnd - 1) >> bandShift) {
-                    count[firstBand] += counted;  // the common case: within one band
-                    area[firstBand] += faceArea;
-                    continue;
-                }
-                const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
-                forEachBand(box, [&](int k) {
-                    count[k] += counted;
-                    const int inBand = std::min(box.rowEnd, (k + 1) * bandRows) -
-                                       std::max(box.rowBegin, k * bandRows);
-                    area[k] += areaPerRow * inBand;
-                });
             }
-            chunkDepthRange[chunk] = {lo, hi};
+            const FixedPoint p[3] = {vertexAt[f[0]], vertexAt[f[1]], vertexAt[f[2]]};
+            if (!triangleBox(p, canvasSize, box)) {
+                box.rowBegin = box.rowEnd = 0;
+                continue;
+            }
+            // In pixels, for estimating each band's overdraw; the sign gives the winding.
+            const double signedArea =
+                (double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
+                 double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
+                (0.5 / double(kSubpixelOne * kSubpixelOne));
+            const double faceArea = std::abs(signedArea);
+            const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
+            const int firstBand = box.rowBegin >> shift;
+            if (firstBand == (box.rowEnd - 1) >> shift) {
+                count[firstBand] += counted;  // the common case: within one band
+                area[firstBand] += faceArea;
+                continue;
+            }
+            const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
+            forEachBand(box, [&](int k) {
+                count[k] += counted;
+                const int inBand = std::min(box.rowEnd, (k + 1) * rowsPerBand) -
+                                   std::max(box.rowBegin, k * rowsPerBand);
+                area[k] += areaPerRow * inBand;
+            });
+        }
+        chunkDepthRange[chunk] = {lo, hi};
+    };
+    parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
+        using Yes = std::true_type;
+        using No = std::false_type;
+        for (int chunk = chunks.start; chunk < chunks.end; chunk++) {
+            if (!byDepth)
+                boxFaces(chunk, No(), No(), No());
+            else if (byFaceDepth)
+                boxFaces(chunk, Yes(), Yes(), No());
+            else if (depthTested)
+                boxFaces(chunk, Yes(), No(), Yes());
+            else
+                boxFaces(chunk, Yes(), No(), No());
         }
     });
 
