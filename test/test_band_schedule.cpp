@@ -54,12 +54,24 @@ TEST(BandSchedule, ThievesTakeHalfBandsAndOwnersTheRest)
 {
     BandSchedule schedule(std::vector<double>(4, 1.0), 2);  // runs 0-1, 2-3; halves
     EXPECT_EQ(nextOf(schedule, 1), "2");
-    EXPECT_EQ(nextOf(schedule, 1), "3");
+    EXPECT_EQ(nextOf(schedule, 1), "3");    // its last band, whole: run 0 still has two
     EXPECT_EQ(nextOf(schedule, 1), "1.1");  // the far half of run 0's last band
-    EXPECT_EQ(nextOf(schedule, 0), "0");    // the owner's first band, still whole
-    EXPECT_EQ(nextOf(schedule, 0), "1.0");  // the half the thief left
+    // No other run has a band left: the owner takes its last one in halves, to share it.
+    EXPECT_EQ(nextOf(schedule, 0), "0.0");
+    EXPECT_EQ(nextOf(schedule, 1), "1.0");
+    EXPECT_EQ(nextOf(schedule, 0), "0.1");
     EXPECT_EQ(nextOf(schedule, 0), "none");
     EXPECT_EQ(nextOf(schedule, 1), "none");
+}
+
+TEST(BandSchedule, AnOwnersLastBandIsWholeWhileAnotherRunHasBands)
+{
+    BandSchedule schedule(std::vector<double>(4, 1.0), 2);
+    EXPECT_EQ(nextOf(schedule, 0), "0");
+    EXPECT_EQ(nextOf(schedule, 0), "1");
+    EXPECT_EQ(nextOf(schedule, 1), "2");
+    EXPECT_EQ(nextOf(schedule, 1), "3.0");
+    EXPECT_EQ(nextOf(schedule, 0), "3.1");
 }
 
 TEST(BandSchedule, OnlyHalves)

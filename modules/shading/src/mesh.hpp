@@ -629,8 +629,11 @@ private:
                 return {-1, -1};
             // Runs start and end on whole bands, and without halves both ends move by whole
             // bands: then every claim here is a whole band.
-            const bool whole =
-                owner ? !onlyHalves_ && begin % 2 == 0 && end - begin >= 2 : !halves_;
+            // An owner takes its last band in halves when no other run has a whole band left,
+            // so that a thread about to run out of work can share it.
+            const bool whole = owner ? !onlyHalves_ && begin % 2 == 0 && end - begin >= 2 &&
+                                           (!halves_ || end - begin >= 4 || othersHaveBand(w))
+                                     : !halves_;
             const uint32_t count = whole ? 2 : 1;
             const uint64_t taken = owner ? run + (uint64_t(count) << 32) : run - count;
             if (runs_[w].compare_exchange_weak(run, taken, std::memory_order_relaxed)) {
@@ -638,6 +641,17 @@ private:
                 return {int(half / 2), whole ? -1 : int(half % 2)};
             }
         }
+    }
+
+    //! Whether a run other than w's has a band left whole.
+    bool othersHaveBand(int w) const
+    {
+        for (int v = 0; v < workers(); v++) {
+            const uint64_t run = runs_[v].load(std::memory_order_relaxed);
+            if (v != w && uint32_t(run) >= uint32_t(run >> 32) + 2)
+                return true;
+        }
+        return false;
     }
 
     //! Per worker: its first half band << 32 | its end, in half bands.
