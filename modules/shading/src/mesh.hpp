@@ -893,6 +893,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const int64 bandsStart = getTickCount();
 #endif
     parallel_for_(Range(0, schedule.workers()), [&](const Range& range) {
+        // What the loop reads per face and per span, in locals: a variable captured by
+        // reference is read again after every store that may alias it.
+        const int columns = width;
+        const SampleBox* const faceBox = boxes.data();
+        const bool deferred = options.deferred;
+        const size_t rowStep = canvasStep;
+        uchar* const pixels = canvasData;
+        const double* const keyOf = faceKeys;
+        const Vec3i* const faceAt = mesh.faces.data();
 #if OPENCV_SHADING_STAGE_TIMES
         int workerBands = 0;
 #endif
@@ -900,7 +909,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         // registers, which it cannot do for a thread_local's (every store might change them).
         BandWorkspace& threadBuffers = BandWorkspace::ofThisThread();
         CoverageBits coverage = std::move(threadBuffers.coverage);
-        coverage.reset(bandRows, width);
+        coverage.reset(bandRows, columns);
         std::vector<uint64_t> scratch = std::move(threadBuffers.scratch);
         std::vector<uchar> tile = std::move(threadBuffers.tile);
         std::vector<std::pair<double, uint64_t>> refineRun = std::move(threadBuffers.refineRun);
@@ -956,7 +965,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             uint64_t* order = binned.data() + bandStart[band];  // decreasing face order
             size_t orderSize = bandStart[band + 1] - bandStart[band];
             // The band's way of drawing, decided for the whole band (halves draw as it does).
-            const double overdraw = bandArea[band] - double(bandY1 - bandY0) * width;
+            const double overdraw = bandArea[band] - double(bandY1 - bandY0) * columns;
             const size_t windingMinority =
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
             const bool closedSurface = 4 * windingMinority >= orderSize &&
@@ -972,7 +981,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // other half may be drawn at the same time and the lists are sorted in place.
                 partEntries.clear();
                 for (size_t i = 0; i < orderSize; i++) {
-                    const SampleBox& box = boxes[entryFace(order[i])];
+                    const SampleBox& box = faceBox[entryFace(order[i])];
                     if (box.rowBegin < y1 && box.rowEnd > y0)
                         partEntries.push_back(order[i]);
                 }
@@ -998,7 +1007,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 constexpr size_t kWideKeyEntries = 8192;
                 order = sortBandEntries(order, orderSize, scratch,
                                         orderSize > kWideKeyEntries ? 24 : 16);
-                refineEqualKeys(order, orderSize, faceKeys, refineRun);
+                refineEqualKeys(order, orderSize, keyOf, refineRun);
             }
 
             // Sets up faces[0 .. count) into `batch`, returning how many cover something. Faces
@@ -1007,7 +1016,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             auto prepareBatch = [&](const int* faces, int count) {
                 Vec3i corners[kBatch];
                 for (int i = 0; i < count; i++)
-                    corners[i] = mesh.faces[faces[i]];
+                    corners[i] = faceAt[faces[i]];
                 FixedPoint points[kBatch][3];
                 for (int i = 0; i < count; i++)
                     for (int j = 0; j < 3; j++) {
@@ -1021,7 +1030,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     TriangleSetup triangles[kBatch];
                     int vertexOrders[kBatch][3], setUp[kBatch], setUpFaces[kBatch];
                     for (int i = 0; i < count; i++)
-                        if (setupBoxedTriangle(points[i], boxes[faces[i]], size,
+                        if (setupBoxedTriangle(points[i], faceBox[faces[i]], size,
                                                triangles[prepared], vertexOrders[prepared])) {
                             setUp[prepared] = i;
                             setUpFaces[prepared++] = faces[i];
@@ -1039,7 +1048,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 for (int i = 0; i < count; i++) {
                     TriangleSetup triangle;
                     int vertexOrder[3];
-                    if (!setupBoxedTriangle(points[i], boxes[faces[i]], size, triangle,
+                    if (!setupBoxedTriangle(points[i], faceBox[faces[i]], size, triangle,
                                             vertexOrder))
                         continue;
                     new (&batch[prepared++]) BatchFace{
@@ -1055,39 +1064,39 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     // Nearest faces first; each tests its samples against (depth, face) kept.
                     if (background)  // a cleared canvas: the band's rows first
                         for (int y = y0; y < y1; y++)
-                            fillPixels(reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep),
-                                       0, width, background->val);
-                    zbuffer.reset(y1 - y0, width);
-                    if (options.deferred)
-                        keptWeights.resize(size_t(y1 - y0) * width * 2);
+                            fillPixels(reinterpret_cast<T*>(pixels + size_t(y) * rowStep),
+                                       0, columns, background->val);
+                    zbuffer.reset(y1 - y0, columns);
+                    if (deferred)
+                        keptWeights.resize(size_t(y1 - y0) * columns * 2);
                     for (size_t next = 0; next < orderSize;) {
                         int count = 0;
                         for (; next < orderSize && count < kBatch; next++) {
                             if (next + kBoxPrefetch < orderSize) {
                                 const int ahead = entryFace(order[next + kBoxPrefetch]);
-                                __builtin_prefetch(&boxes[ahead]);
-                                __builtin_prefetch(&faceKeys[ahead]);
+                                __builtin_prefetch(&faceBox[ahead]);
+                                __builtin_prefetch(&keyOf[ahead]);
                             }
                             const int face = entryFace(order[next]);
-                            const SampleBox& box = boxes[face];
+                            const SampleBox& box = faceBox[face];
                             // Its nearest vertex, less float rounding: no sample is nearer.
-                            const float nearest = float(faceKeys[face]) * (1.f - 1e-6f);
+                            const float nearest = float(keyOf[face]) * (1.f - 1e-6f);
                             if (!zbuffer.hidden(std::max(box.rowBegin, y0) - y0,
                                                 std::min(box.rowEnd, y1) - y0, box.colFirst,
                                                 box.colLast, nearest)) {
-                                __builtin_prefetch(&mesh.faces[face]);  // read by prepareBatch
+                                __builtin_prefetch(&faceAt[face]);  // read by prepareBatch
                                 batchFaces[count++] = face;
                             }
                         }
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
                             const BatchFace& bf = batch[i];
-                            walkTriangle(bf.triangle, y0, y1, width,
+                            walkTriangle(bf.triangle, y0, y1, columns,
                                          [&](int y, int xBegin, int xEnd) {
                                 const int r = y - y0;
-                                T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
-                                float* weights = options.deferred
-                                                     ? keptWeights.data() + size_t(r) * width * 2
+                                T* row = reinterpret_cast<T*>(pixels + size_t(y) * rowStep);
+                                float* weights = deferred
+                                                     ? keptWeights.data() + size_t(r) * columns * 2
                                                      : nullptr;
                                 bf.shader.depthTest(bf.triangle, row, y, xBegin, xEnd, bf.face,
                                                     zbuffer.keptRow(r), weights,
@@ -1095,13 +1104,13 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             });
                         }
                     }
-                    if (options.deferred)
+                    if (deferred)
                         for (int y = y0; y < y1; y++)
                             shaders.shadeKeptRow(
-                                reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep), y,
+                                reinterpret_cast<T*>(pixels + size_t(y) * rowStep), y,
                                 zbuffer.keptRow(y - y0),
-                                keptWeights.data() + size_t(y - y0) * width * 2,
-                                zbuffer.coveredRow(y - y0), width);
+                                keptWeights.data() + size_t(y - y0) * columns * 2,
+                                zbuffer.coveredRow(y - y0), columns);
                     continue;
                 }
             }
@@ -1117,9 +1126,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // faces, took 6-11% longer on the million-face grid.)
                 if (background)
                     for (int y = y0; y < y1; y++)
-                        fillPixels(canvas.ptr<T>(y), 0, width, background->val);
+                        fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
                 if (byDepth) {
-                    bandDepths.resize(size_t(y1 - y0) * width);
+                    bandDepths.resize(size_t(y1 - y0) * columns);
                     std::fill(bandDepths.begin(), bandDepths.end(), inf);
                 }
                 for (size_t next = orderSize; next > 0;) {  // increasing face order
@@ -1129,15 +1138,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     const int batchSize = prepareBatch(batchFaces, count);
                     for (int i = 0; i < batchSize; i++) {
                         const BatchFace& bf = batch[i];
-                        const double depth = byDepth ? faceKeys[bf.face] : 0.0;
-                        walkTriangle(bf.triangle, y0, y1, width,
+                        const double depth = byDepth ? keyOf[bf.face] : 0.0;
+                        walkTriangle(bf.triangle, y0, y1, columns,
                                      [&](int y, int xBegin, int xEnd) {
-                            T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                            T* row = reinterpret_cast<T*>(pixels + size_t(y) * rowStep);
                             if (!byDepth) {  // face order is the painter's
                                 bf.shader(bf.triangle, row, y, xBegin, xBegin, xEnd);
                                 return;
                             }
-                            takeNearerOrEqual(bandDepths.data() + size_t(y - y0) * width, xBegin,
+                            takeNearerOrEqual(bandDepths.data() + size_t(y - y0) * columns, xBegin,
                                               xEnd, depth, [&](int a, int b) {
                                 bf.shader(bf.triangle, row, y, xBegin, a, b);
                             });
@@ -1156,9 +1165,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 if (sliced)
                     for (size_t i = 0; i < orderSize; i++) {
                         if (i + kSliceBoxPrefetch < orderSize)
-                            __builtin_prefetch(&boxes[entryFace(order[i + kSliceBoxPrefetch])]);
+                            __builtin_prefetch(&faceBox[entryFace(order[i + kSliceBoxPrefetch])]);
                         const int face = entryFace(order[i]);
-                        const SampleBox& box = boxes[face];
+                        const SampleBox& box = faceBox[face];
                         const int first = (std::max(box.rowBegin, y0) - y0) >> paintShift;
                         const int last = (std::min(box.rowEnd, y1) - 1 - y0) >> paintShift;
                         const uint32_t slices = (2u << last) - (1u << first);
@@ -1168,7 +1177,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     const int s1 = std::min(y1, s0 + paintRows);
                     if (background)
                         for (int y = s0; y < s1; y++)
-                            fillPixels(canvas.ptr<T>(y), 0, width, background->val);
+                            fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
                     for (size_t next = orderSize; next > 0;) {
                         int count = 0;
                         for (; next > 0 && count < kBatch; next--)
@@ -1176,16 +1185,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                 // Faces in depth order, from all over the arrays: read by
                                 // prepareBatch once the batch is full.
                                 const int face = entryFace(order[next - 1]);
-                                __builtin_prefetch(&boxes[face]);
-                                __builtin_prefetch(&mesh.faces[face]);
+                                __builtin_prefetch(&faceBox[face]);
+                                __builtin_prefetch(&faceAt[face]);
                                 batchFaces[count++] = face;
                             }
                         const int batchSize = prepareBatch(batchFaces, count);
                         for (int i = 0; i < batchSize; i++) {
                             const BatchFace& bf = batch[i];
-                            walkTriangle(bf.triangle, s0, s1, width,
+                            walkTriangle(bf.triangle, s0, s1, columns,
                                          [&](int y, int xBegin, int xEnd) {
-                                T* row = reinterpret_cast<T*>(canvasData + size_t(y) * canvasStep);
+                                T* row = reinterpret_cast<T*>(pixels + size_t(y) * rowStep);
                                 bf.shader(bf.triangle, row, y, xBegin, xBegin, xEnd);
                             });
                         }
@@ -1198,12 +1207,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             // (frontmost) face, and faces behind finished rows are skipped unread.
             coverage.clear();
             if constexpr (Shaders::kZBuffer)
-                if (options.deferred) {
-                    keptFaces.resize(size_t(bandRows) * width);
-                    keptWeights.resize(size_t(bandRows) * width * 2);
+                if (deferred) {
+                    keptFaces.resize(size_t(bandRows) * columns);
+                    keptWeights.resize(size_t(bandRows) * columns * 2);
                 }
-            uchar* bandData = canvasData + size_t(y0) * canvasStep;  // row y0
-            size_t bandStep = canvasStep;
+            uchar* bandData = pixels + size_t(y0) * rowStep;  // row y0
+            size_t bandStep = rowStep;
             if (streamBands) {
                 tile.resize(size_t(bandRows) * rowBytes);
                 bandData = tile.data();
@@ -1212,9 +1221,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // Visible runs land all over the band's rows: asking for all of its lines now
                 // lets the memory system fetch them in parallel, not one store miss at a time.
                 for (int y = y0; y < y1; y++)
-                    prefetchBytes(canvasData + size_t(y) * canvasStep, rowBytes);
+                    prefetchBytes(pixels + size_t(y) * rowStep, rowBytes);
             }
-            std::fill(rowLeft, rowLeft + bandRows, width);
+            std::fill(rowLeft, rowLeft + bandRows, columns);
             uint64_t fullRows = 0;  // bit r: row y0 + r is final everywhere
             const uint64_t allRows = rowsBelow(y1 - y0);
             // The rows of `box` within the band, as bits from y0, less the rows that are final
@@ -1235,11 +1244,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 for (; next < orderSize && count < kBatch; next++) {
                     // Faces come in depth order, their boxes from all over the array.
                     if (next + kBoxPrefetch < orderSize)
-                        __builtin_prefetch(&boxes[entryFace(order[next + kBoxPrefetch])]);
+                        __builtin_prefetch(&faceBox[entryFace(order[next + kBoxPrefetch])]);
                     const int face = entryFace(order[next]);
                     uint64_t anyRows;  // a face whose box is final is skipped unread
-                    if (visibleRows(boxes[face], anyRows, true, std::true_type())) {
-                        __builtin_prefetch(&mesh.faces[face]);  // read by prepareBatch
+                    if (visibleRows(faceBox[face], anyRows, true, std::true_type())) {
+                        __builtin_prefetch(&faceAt[face]);  // read by prepareBatch
                         batchFaces[count++] = face;
                     }
                 }
@@ -1249,7 +1258,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     // Small faces (a box within two mask words and 16 rows) are not tested
                     // again: walking them costs about what the test does, and their claims skip
                     // what is final. A bigger face may be hidden by the batch's earlier faces.
-                    const SampleBox& box = boxes[bf.face];
+                    const SampleBox& box = faceBox[bf.face];
                     const bool retest = box.colLast - box.colFirst >= 64 ||
                                         box.rowEnd - box.rowBegin > 16;
                     uint64_t rowsToDraw;
@@ -1257,7 +1266,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         continue;
                     const int firstRow = y0 + __builtin_ctzll(rowsToDraw);
                     const int lastRow = y0 + 63 - __builtin_clzll(rowsToDraw);
-                    walkTriangle(bf.triangle, firstRow, lastRow + 1, width,
+                    walkTriangle(bf.triangle, firstRow, lastRow + 1, columns,
                                  [&](int y, int xBegin, int xEnd) {
                         const int r = y - y0;
                         if (!(rowsToDraw >> r & 1))
@@ -1265,10 +1274,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         T* row = reinterpret_cast<T*>(bandData + size_t(r) * bandStep);
                         rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {
                             if constexpr (Shaders::kZBuffer) {
-                                if (options.deferred) {  // shaded below, a batch at a time
+                                if (deferred) {  // shaded below, a batch at a time
                                     bf.shader.keep(bf.triangle, y, a, b, bf.face,
-                                                   keptFaces.data() + size_t(r) * width,
-                                                   keptWeights.data() + size_t(r) * width * 2);
+                                                   keptFaces.data() + size_t(r) * columns,
+                                                   keptWeights.data() + size_t(r) * columns * 2);
                                     return;
                                 }
                             }
@@ -1280,25 +1289,25 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 }
             }
             if constexpr (Shaders::kZBuffer)
-                if (options.deferred)
+                if (deferred)
                     for (int y = y0; y < y1; y++)
                         shaders.shadeKeptRow(
                             reinterpret_cast<T*>(bandData + size_t(y - y0) * bandStep), y,
-                            keptFaces.data() + size_t(y - y0) * width,
-                            keptWeights.data() + size_t(y - y0) * width * 2,
-                            coverage.row(y - y0), width);
+                            keptFaces.data() + size_t(y - y0) * columns,
+                            keptWeights.data() + size_t(y - y0) * columns * 2,
+                            coverage.row(y - y0), columns);
             if (background) {
                 for (int y = y0; y < y1; y++) {
                     T* row = reinterpret_cast<T*>(bandData + size_t(y - y0) * bandStep);
                     // Claiming the whole row visits exactly what no face covered.
-                    coverage.claim(y - y0, 0, width, [&](int a, int b) {
+                    coverage.claim(y - y0, 0, columns, [&](int a, int b) {
                         fillPixels(row, a, b, background->val);
                     });
                 }
             }
             if (streamBands)
                 for (int y = y0; y < y1; y++)
-                    streamBytes(canvasData + size_t(y) * canvasStep,
+                    streamBytes(pixels + size_t(y) * rowStep,
                                 bandData + size_t(y - y0) * bandStep, rowBytes);
         }
         if (streamBands)
