@@ -586,7 +586,7 @@ TEST(Mesh3dReference, UnclippedScenesExactFaceIds)
     EXPECT_GE(done, 30);
 }
 
-// Same pictures whatever the thread count.
+// Same pictures whatever the thread count, and with every band drawn in halves.
 TEST(Mesh3dReference, ThreadCountIndependent)
 {
     cv::RNG rng(0x3d54u);

@@ -221,15 +221,16 @@ TEST(DrawTexturedMesh3d, SameImageForAnyThreadCount)
     for (int shade : {SHADE_FLAT, SHADE_GOURAUD, SHADE_PHONG})
         for (int visibility : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER}) {
             s.shadeType = shade, s.visibility = visibility;
-            Mat images[3];
-            const int counts[3] = {1, 2, 8};
-            for (int i = 0; i < 3; i++) {
-                setNumThreads(counts[i]);
+            Mat images[4];
+            const int counts[4] = {1, 2, 8, -2};  // -2: 2 threads, every band drawn in halves
+            for (int i = 0; i < 4; i++) {
+                setNumThreads(std::abs(counts[i]));
+                shading_test::HalfBands halves(counts[i] < 0);
                 images[i] = Mat(300, 300, CV_8UC3, Scalar::all(0));
                 drawTexturedMesh3d(images[i], verts, faces, uv, tex, kK, kZero, kZero, s);
             }
-            EXPECT_EQ(norm(images[0], images[1], NORM_INF), 0);
-            EXPECT_EQ(norm(images[0], images[2], NORM_INF), 0);
+            for (int i = 1; i < 4; i++)
+                EXPECT_EQ(norm(images[0], images[i], NORM_INF), 0) << counts[i];
         }
     setNumThreads(threads);
 }

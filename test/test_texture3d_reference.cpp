@@ -33,6 +33,7 @@
 #include <opencv2/shading.hpp>
 
 #include "reference/texture3d_reference.hpp"
+#include "test_common.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -745,7 +746,7 @@ TEST(Texture3dReference, BadInputThrowsAndTouchesNothing)
     EXPECT_GT(cv::norm(canvas, canvas0, cv::NORM_INF), 0);
 }
 
-// Same picture whatever the thread count.
+// Same picture whatever the thread count, and with every band drawn in halves.
 TEST(Texture3dReference, ThreadCountIndependent)
 {
     cv::RNG rng(0x7e3d5);
@@ -756,9 +757,16 @@ TEST(Texture3dReference, ThreadCountIndependent)
         const LibOut a = drawTextured(c.scene, c.canvas, c.depthIn);
         cv::setNumThreads(std::max(2, threads));
         const LibOut b = drawTextured(c.scene, c.canvas, c.depthIn);
+        LibOut halves;  // every band drawn in halves, as a thread that steals draws them
+        {
+            shading_test::HalfBands on(true);
+            halves = drawTextured(c.scene, c.canvas, c.depthIn);
+        }
         cv::setNumThreads(threads);
-        EXPECT_EQ(0, cv::norm(a.canvas, b.canvas, cv::NORM_INF)) << i;
-        EXPECT_EQ(0, cv::norm(a.faceIds, b.faceIds, cv::NORM_INF)) << i;
+        for (const LibOut* other : {&b, static_cast<const LibOut*>(&halves)}) {
+            EXPECT_EQ(0, cv::norm(a.canvas, other->canvas, cv::NORM_INF)) << i;
+            EXPECT_EQ(0, cv::norm(a.faceIds, other->faceIds, cv::NORM_INF)) << i;
+        }
     }
 }
 
