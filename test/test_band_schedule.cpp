@@ -83,11 +83,23 @@ TEST(BandSchedule, OnlyHalves)
 
 TEST(BandSchedule, FewerBandsThanThreadsAndNone)
 {
-    BandSchedule three(std::vector<double>(3, 1.0), 8);
+    BandSchedule three(std::vector<double>(3, 1.0), 8, false);
     EXPECT_EQ(three.workers(), 3);
     BandSchedule none(std::vector<double>(), 4);
     EXPECT_EQ(none.workers(), 1);
     EXPECT_EQ(none.next(0).band, -1);
+}
+
+TEST(BandSchedule, WorkersBeyondTheBandsTakeHalves)
+{
+    BandSchedule schedule(std::vector<double>(2, 1.0), 8);  // runs 0 and 1; halves
+    ASSERT_EQ(schedule.workers(), 4);                        // one per half band
+    EXPECT_EQ(nextOf(schedule, 2), "0.1");  // no run of its own: the far half of run 0
+    EXPECT_EQ(nextOf(schedule, 3), "1.1");  // run 1 has the most left now
+    EXPECT_EQ(nextOf(schedule, 0), "0.0");
+    EXPECT_EQ(nextOf(schedule, 1), "1.0");
+    for (int w = 0; w < 4; w++)
+        EXPECT_EQ(nextOf(schedule, w), "none");
 }
 
 TEST(BandSchedule, EveryHalfOnceUnderConcurrentTakers)

@@ -566,7 +566,7 @@ vertices still in its caches; a thread done with its run takes bands from the fa
 run with the most left, so that the threads finish together. With few bands per thread it takes
 half bands, so that they finish within about half a band of each other (setting up twice the
 faces that reach both halves, where a whole band would leave one thread waiting for the other's
-last one). */
+last one), and threads beyond one per band start there, up to one per half band. */
 class BandSchedule {
 public:
     /** `halves`: thieves take half bands (else whole ones, as owners do), for few bands per
@@ -575,6 +575,9 @@ public:
     BandSchedule(const std::vector<double>& cost, int workers, bool halves = true,
                  bool onlyHalves = false)
         : runs_(size_t(std::max(1, std::min(int(cost.size()), workers)))),
+          // Workers beyond one per band only take halves from the others' runs.
+          workers_(std::max(1, std::min(int(cost.size()) * (halves || onlyHalves ? 2 : 1),
+                                        workers))),
           halves_(halves || onlyHalves), onlyHalves_(onlyHalves)
     {
         const int bands = int(cost.size()), runs = int(runs_.size());
@@ -594,17 +597,20 @@ public:
         }
     }
 
-    int workers() const { return int(runs_.size()); }
+    //! How many workers to start: one per run, and where halves are taken, up to one per half.
+    int workers() const { return workers_; }
 
     //! The next band or half band for worker w; band -1 when every one is taken.
     BandPart next(int w)
     {
-        if (const BandPart part = take(w, true); part.band >= 0)
-            return part;
+        if (w < runs()) {
+            if (const BandPart part = take(w, true); part.band >= 0)
+                return part;
+        }
         for (;;) {
             int victim = -1;
             uint32_t most = 0;
-            for (int v = 0; v < workers(); v++) {
+            for (int v = 0; v < runs(); v++) {
                 const uint64_t run = runs_[v].load(std::memory_order_relaxed);
                 const uint32_t left = uint32_t(run) - uint32_t(run >> 32);
                 if (uint32_t(run) > uint32_t(run >> 32) && left > most)
@@ -646,7 +652,7 @@ private:
     //! Whether a run other than w's has a band left whole.
     bool othersHaveBand(int w) const
     {
-        for (int v = 0; v < workers(); v++) {
+        for (int v = 0; v < runs(); v++) {
             const uint64_t run = runs_[v].load(std::memory_order_relaxed);
             if (v != w && uint32_t(run) >= uint32_t(run >> 32) + 2)
                 return true;
@@ -654,8 +660,11 @@ private:
         return false;
     }
 
-    //! Per worker: its first half band << 32 | its end, in half bands.
+    int runs() const { return int(runs_.size()); }
+
+    //! Per run (worker): its first half band << 32 | its end, in half bands.
     std::vector<std::atomic<uint64_t>> runs_;
+    int workers_;
     bool halves_, onlyHalves_;
 };
 
