@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <initializer_list>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 using cv::shading::detail::BandPart;
@@ -22,6 +25,13 @@ std::string nextOf(BandSchedule& schedule, int w)
     if (part.band < 0)
         return "none";
     return std::to_string(part.band) + (part.half < 0 ? "" : "." + std::to_string(part.half));
+}
+
+//! Expects each (worker, part) in turn, as nextOf writes it.
+void expectTakes(BandSchedule& schedule, std::initializer_list<std::pair<int, const char*>> takes)
+{
+    for (const auto& take : takes)
+        EXPECT_EQ(nextOf(schedule, take.first), take.second) << "worker " << take.first;
 }
 
 }  // namespace
@@ -53,25 +63,16 @@ TEST(BandSchedule, AThiefTakesFromTheFarEndOfTheLongestRun)
 TEST(BandSchedule, ThievesTakeHalfBandsAndOwnersTheRest)
 {
     BandSchedule schedule(std::vector<double>(4, 1.0), 2);  // runs 0-1, 2-3; halves
-    EXPECT_EQ(nextOf(schedule, 1), "2");
-    EXPECT_EQ(nextOf(schedule, 1), "3");    // its last band, whole: run 0 still has two
-    EXPECT_EQ(nextOf(schedule, 1), "1.1");  // the far half of run 0's last band
-    // No other run has a band left: the owner takes its last one in halves, to share it.
-    EXPECT_EQ(nextOf(schedule, 0), "0.0");
-    EXPECT_EQ(nextOf(schedule, 1), "1.0");
-    EXPECT_EQ(nextOf(schedule, 0), "0.1");
-    EXPECT_EQ(nextOf(schedule, 0), "none");
-    EXPECT_EQ(nextOf(schedule, 1), "none");
+    // Worker 1's last band is whole (run 0 still has two); then it takes the far half of run
+    // 0's last band. No other run has a band left: worker 0 takes its last one in halves.
+    expectTakes(schedule, {{1, "2"}, {1, "3"}, {1, "1.1"}, {0, "0.0"}, {1, "1.0"}, {0, "0.1"},
+                           {0, "none"}, {1, "none"}});
 }
 
 TEST(BandSchedule, AnOwnersLastBandIsWholeWhileAnotherRunHasBands)
 {
     BandSchedule schedule(std::vector<double>(4, 1.0), 2);
-    EXPECT_EQ(nextOf(schedule, 0), "0");
-    EXPECT_EQ(nextOf(schedule, 0), "1");
-    EXPECT_EQ(nextOf(schedule, 1), "2");
-    EXPECT_EQ(nextOf(schedule, 1), "3.0");
-    EXPECT_EQ(nextOf(schedule, 0), "3.1");
+    expectTakes(schedule, {{0, "0"}, {0, "1"}, {1, "2"}, {1, "3.0"}, {0, "3.1"}});
 }
 
 TEST(BandSchedule, OnlyHalves)
@@ -94,12 +95,9 @@ TEST(BandSchedule, WorkersBeyondTheBandsTakeHalves)
 {
     BandSchedule schedule(std::vector<double>(2, 1.0), 8);  // runs 0 and 1; halves
     ASSERT_EQ(schedule.workers(), 4);                        // one per half band
-    EXPECT_EQ(nextOf(schedule, 2), "0.1");  // no run of its own: the far half of run 0
-    EXPECT_EQ(nextOf(schedule, 3), "1.1");  // run 1 has the most left now
-    EXPECT_EQ(nextOf(schedule, 0), "0.0");
-    EXPECT_EQ(nextOf(schedule, 1), "1.0");
-    for (int w = 0; w < 4; w++)
-        EXPECT_EQ(nextOf(schedule, w), "none");
+    // Workers 2 and 3 have no run: each takes the far half of the run with the most left.
+    expectTakes(schedule, {{2, "0.1"}, {3, "1.1"}, {0, "0.0"}, {1, "1.0"}, {0, "none"},
+                           {1, "none"}, {2, "none"}, {3, "none"}});
 }
 
 TEST(BandSchedule, EveryHalfOnceUnderConcurrentTakers)

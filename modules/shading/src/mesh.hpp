@@ -634,9 +634,9 @@ private:
             if (begin >= end)
                 return {-1, -1};
             // Runs start and end on whole bands, and without halves both ends move by whole
-            // bands: then every claim here is a whole band.
-            // An owner takes its last band in halves when no other run has a whole band left,
-            // so that a thread about to run out of work can share it.
+            // bands, so every claim is whole. With halves, an owner takes its last band in
+            // halves when no other run has a whole band left, so that a thread about to run out
+            // of work can share it.
             const bool whole = owner ? !onlyHalves_ && begin % 2 == 0 && end - begin >= 2 &&
                                            (!halves_ || end - begin >= 4 || othersHaveBand(w))
                                      : !halves_;
