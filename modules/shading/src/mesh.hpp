@@ -1290,7 +1290,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                     return;
                                 }
                             }
-                            bf.shader(bf.triangle, row, y, xBegin, a, b);
+                            if constexpr (std::is_same<Shader, GouraudShader<T>>::value)
+                                bf.shader.shadeRun(bf.triangle, row, y, xBegin, a, b);
+                            else
+                                bf.shader(bf.triangle, row, y, xBegin, a, b);
                         });
                         if (rowLeft[r] == 0)
                             fullRows |= uint64_t(1) << r;

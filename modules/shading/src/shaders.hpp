@@ -271,6 +271,13 @@ struct GouraudShader {
     void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
                     int xEnd) const
     {
+        shadeRun(t, row, y, spanBegin, xBegin, xEnd);
+    }
+
+    //! operator(), always inlined: for the front-to-back claims, a call per run of a few pixels.
+    __attribute__((always_inline)) void shadeRun(const TriangleSetup& t, T* row, int y,
+                                                 int spanBegin, int xBegin, int xEnd) const
+    {
         if (perPixel) {
             shadePerPixel(t, row, y, xBegin, xEnd);
             return;
