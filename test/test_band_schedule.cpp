@@ -1,8 +1,8 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
-// The band pass's schedule (internal): every row of every band is handed out exactly once,
-// whatever the threads do; a worker's own run is consecutive whole bands of about its share of
-// the cost, and thieves take half bands where bands are few.
+// The band pass's schedule (internal): every quarter of every band is handed out exactly once,
+// whatever the threads do; a worker's own run is consecutive bands of about its share of the
+// cost, and where bands are few, runs end within bands and thieves take parts of them.
 #include "../modules/shading/src/mesh.hpp"
 
 #include <gtest/gtest.h>
@@ -18,13 +18,33 @@ using cv::shading::detail::BandSchedule;
 
 namespace {
 
-//! next(w) as "band" (whole), "band.0" / "band.1" (upper / lower half) or "none".
+//! Each band's cost shared by its four quarters, as the band pass does.
+std::vector<double> quartersOf(const std::vector<double>& bandCost)
+{
+    std::vector<double> quarters;
+    for (double cost : bandCost)
+        quarters.insert(quarters.end(), BandPart::kQuarters, cost / BandPart::kQuarters);
+    return quarters;
+}
+
+//! `bands` bands of cost 1, in quarters.
+std::vector<double> equalBands(int bands)
+{
+    return quartersOf(std::vector<double>(bands, 1.0));
+}
+
+//! next(w) as "band" (whole), "band.q" (quarter q) or "band.q-r" (quarters q to r), or "none".
 std::string nextOf(BandSchedule& schedule, int w)
 {
     const BandPart part = schedule.next(w);
     if (part.band < 0)
         return "none";
-    return std::to_string(part.band) + (part.half < 0 ? "" : "." + std::to_string(part.half));
+    std::string text = std::to_string(part.band);
+    if (!part.whole())
+        text += "." + std::to_string(part.quarter);
+    if (!part.whole() && part.quarters > 1)
+        text += "-" + std::to_string(part.quarter + part.quarters - 1);
+    return text;
 }
 
 //! Expects each (worker, part) in turn, as nextOf writes it.
@@ -41,7 +61,7 @@ TEST(BandSchedule, OwnRunsAreConsecutiveSharesOfTheCost)
     // Costs 10 x 1, then 1 x 10: two workers split them 10 | 1 by cost, not 5.5 | 5.5 by count.
     std::vector<double> cost(10, 1.0);
     cost.push_back(10.0);
-    BandSchedule schedule(cost, 2, false);
+    BandSchedule schedule(quartersOf(cost), 2, false);
     ASSERT_EQ(schedule.workers(), 2);
     for (int band = 0; band < 10; band++)
         EXPECT_EQ(nextOf(schedule, 0), std::to_string(band));  // worker 0's run, in order
@@ -52,7 +72,7 @@ TEST(BandSchedule, OwnRunsAreConsecutiveSharesOfTheCost)
 
 TEST(BandSchedule, AThiefTakesFromTheFarEndOfTheLongestRun)
 {
-    BandSchedule schedule(std::vector<double>(12, 1.0), 3, false);  // runs 0-3, 4-7, 8-11
+    BandSchedule schedule(equalBands(12), 3, false);  // runs 0-3, 4-7, 8-11
     EXPECT_EQ(nextOf(schedule, 1), "4");
     for (const char* band : {"8", "9", "10", "11"})
         EXPECT_EQ(nextOf(schedule, 2), band);
@@ -60,54 +80,66 @@ TEST(BandSchedule, AThiefTakesFromTheFarEndOfTheLongestRun)
     EXPECT_EQ(nextOf(schedule, 0), "0");
 }
 
-TEST(BandSchedule, ThievesTakeHalfBandsAndOwnersTheRest)
+TEST(BandSchedule, WithPartsRunsEndWithinABand)
 {
-    BandSchedule schedule(std::vector<double>(4, 1.0), 2);  // runs 0-1, 2-3; halves
-    // Worker 1's last band is whole (run 0 still has two); then it takes the far half of run
-    // 0's last band. No other run has a band left: worker 0 takes its last one in halves.
-    expectTakes(schedule, {{1, "2"}, {1, "3"}, {1, "1.1"}, {0, "0.0"}, {1, "1.0"}, {0, "0.1"},
+    // Costs 1, 2, 1: each worker's share is 2, so run 0 is band 0 and band 1's upper half.
+    BandSchedule schedule(quartersOf({1.0, 2.0, 1.0}), 2);
+    // Worker 1 starts with the rest of band 1. Its last band is its run's last piece and no
+    // other run has a whole band left: halves, and then, no other run having a half, quarters.
+    expectTakes(schedule, {{0, "0"}, {1, "1.2-3"}, {0, "1.0-1"}, {1, "2.0-1"}, {1, "2.2"},
+                           {1, "2.3"}, {1, "none"}, {0, "none"}});
+}
+
+TEST(BandSchedule, ThievesTakeHalvesThenQuarters)
+{
+    BandSchedule schedule(equalBands(4), 2);  // runs 0-1, 2-3
+    // Worker 1's last band is whole (run 0 still has two). Then it takes the far half of run
+    // 0's last band, and, with less than a band left there, a quarter.
+    expectTakes(schedule, {{1, "2"}, {1, "3"}, {1, "1.2-3"}, {0, "0"}, {1, "1.1"}, {0, "1.0"},
                            {0, "none"}, {1, "none"}});
 }
 
-TEST(BandSchedule, AnOwnersLastBandIsWholeWhileAnotherRunHasBands)
+TEST(BandSchedule, AnOwnersLastBandIsWholeWhileAnotherRunHasAsMuch)
 {
-    BandSchedule schedule(std::vector<double>(4, 1.0), 2);
-    expectTakes(schedule, {{0, "0"}, {0, "1"}, {1, "2"}, {1, "3.0"}, {0, "3.1"}});
+    BandSchedule schedule(equalBands(4), 2);
+    expectTakes(schedule, {{0, "0"}, {0, "1"}, {1, "2"}, {1, "3.0-1"}, {0, "3.3"}, {1, "3.2"},
+                           {0, "none"}, {1, "none"}});
 }
 
-TEST(BandSchedule, OnlyHalves)
+TEST(BandSchedule, SplitAll)
 {
-    BandSchedule schedule(std::vector<double>(2, 1.0), 1, true, true);
-    for (const char* part : {"0.0", "0.1", "1.0", "1.1", "none"})
+    BandSchedule schedule(equalBands(4), 1, true, true);
+    for (const char* part : {"0.0", "0.1-3", "1.0-1", "1.2-3", "2.0", "2.1", "2.2", "2.3",
+                             "3.0", "3.1-3", "none"})
         EXPECT_EQ(nextOf(schedule, 0), part);
 }
 
 TEST(BandSchedule, FewerBandsThanThreadsAndNone)
 {
-    BandSchedule three(std::vector<double>(3, 1.0), 8, false);
+    BandSchedule three(equalBands(3), 8, false);
     EXPECT_EQ(three.workers(), 3);
     BandSchedule none(std::vector<double>(), 4);
     EXPECT_EQ(none.workers(), 1);
     EXPECT_EQ(none.next(0).band, -1);
 }
 
-TEST(BandSchedule, WorkersBeyondTheBandsTakeHalves)
+TEST(BandSchedule, WorkersBeyondTheBandsTakeParts)
 {
-    BandSchedule schedule(std::vector<double>(2, 1.0), 8);  // runs 0 and 1; halves
-    ASSERT_EQ(schedule.workers(), 4);                        // one per half band
+    BandSchedule schedule(equalBands(2), 8);  // runs 0 and 1
+    ASSERT_EQ(schedule.workers(), 4);          // one per half band
     // Workers 2 and 3 have no run: each takes the far half of the run with the most left.
-    expectTakes(schedule, {{2, "0.1"}, {3, "1.1"}, {0, "0.0"}, {1, "1.0"}, {0, "none"},
-                           {1, "none"}, {2, "none"}, {3, "none"}});
+    expectTakes(schedule, {{2, "0.2-3"}, {3, "1.2-3"}, {0, "0.0-1"}, {1, "1.0"}, {0, "1.1"},
+                           {0, "none"}, {1, "none"}, {2, "none"}, {3, "none"}});
 }
 
-TEST(BandSchedule, EveryHalfOnceUnderConcurrentTakers)
+TEST(BandSchedule, EveryQuarterOnceUnderConcurrentTakers)
 {
     for (int round = 0; round < 30; round++) {
         const int bands = 500 + round, workers = 4;
-        std::vector<double> cost(bands);
-        for (int k = 0; k < bands; k++)
-            cost[k] = double((k * 7919) % 13);  // zero costs too
-        // Whole bands only, halves for thieves, halves for all.
+        std::vector<double> cost(size_t(bands) * BandPart::kQuarters);
+        for (size_t q = 0; q < cost.size(); q++)
+            cost[q] = double((q * 7919) % 13);  // zero costs too
+        // Whole bands only, parts where they pay, every band in parts.
         BandSchedule schedule(cost, workers, round % 3 != 0, round % 3 == 2);
         std::vector<std::vector<BandPart>> taken(workers);
         std::vector<std::thread> threads;
@@ -118,20 +150,21 @@ TEST(BandSchedule, EveryHalfOnceUnderConcurrentTakers)
             });
         for (std::thread& t : threads)
             t.join();
-        std::vector<int> times(2 * bands, 0);  // per half band
+        std::vector<int> times(cost.size(), 0);  // per quarter band
         for (const auto& list : taken)
             for (const BandPart& part : list) {
                 ASSERT_GE(part.band, 0);
                 ASSERT_LT(part.band, bands);
-                ASSERT_GE(part.half, -1);
-                ASSERT_LE(part.half, 1);
+                ASSERT_GE(part.quarter, 0);
+                ASSERT_GE(part.quarters, 1);
+                ASSERT_LE(part.quarter + part.quarters, BandPart::kQuarters);
                 if (round % 3 == 0) {
-                    ASSERT_EQ(part.half, -1);
+                    ASSERT_TRUE(part.whole());
                 }
-                for (int h = 0; h < 2; h++)
-                    times[2 * part.band + h] += part.half < 0 || part.half == h;
+                for (int q = part.quarter; q < part.quarter + part.quarters; q++)
+                    times[size_t(part.band) * BandPart::kQuarters + q]++;
             }
-        for (int k = 0; k < 2 * bands; k++)
-            EXPECT_EQ(times[k], 1) << "half band " << k << " round " << round;
+        for (size_t q = 0; q < times.size(); q++)
+            EXPECT_EQ(times[q], 1) << "quarter band " << q << " round " << round;
     }
 }

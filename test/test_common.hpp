@@ -50,22 +50,23 @@ inline std::set<std::pair<int, int>> flatCoverage(cv::Size size, const std::vect
     return covered;
 }
 
-/** While alive (with `on`), mesh draws draw every band in two halves, as a thread that has
-finished its own bands draws the ones it takes from another (OPENCV_SHADING_HALF_BANDS). */
-class HalfBands {
+/** While alive (with `on`), mesh draws draw every band in parts (a quarter and three, two
+halves, or four quarters), as threads share the bands where they are few
+(OPENCV_SHADING_SPLIT_BANDS). */
+class SplitBands {
 public:
-    explicit HalfBands(bool on) : on_(on)
+    explicit SplitBands(bool on) : on_(on)
     {
         if (on_)
-            setenv("OPENCV_SHADING_HALF_BANDS", "1", 1);
+            setenv("OPENCV_SHADING_SPLIT_BANDS", "1", 1);
     }
-    ~HalfBands()
+    ~SplitBands()
     {
         if (on_)
-            unsetenv("OPENCV_SHADING_HALF_BANDS");
+            unsetenv("OPENCV_SHADING_SPLIT_BANDS");
     }
-    HalfBands(const HalfBands&) = delete;
-    HalfBands& operator=(const HalfBands&) = delete;
+    SplitBands(const SplitBands&) = delete;
+    SplitBands& operator=(const SplitBands&) = delete;
 
 private:
     bool on_;

@@ -463,9 +463,9 @@ TEST(DrawMesh3d, SameImageForAnyThreadCount)
             s.visibility = vis;
             s.lights = {PointLight(Point3d(0, -3, 0), Vec3d(1, 1, 1))};
             Mat first, firstDepth, firstIds;
-            for (int n : {1, 2, 8, -2}) {  // -2: 2 threads, every band drawn in halves
+            for (int n : {1, 2, 8, -2}) {  // -2: 2 threads, every band drawn in parts
                 setNumThreads(std::abs(n));
-                shading_test::HalfBands halves(n < 0);
+                shading_test::SplitBands parts(n < 0);
                 Mat depth, ids;
                 const Mat img = draw(v, f, c, cam, s, &depth, &ids, Size(256, 256));
                 if (first.empty()) {

@@ -586,7 +586,7 @@ TEST(Mesh3dReference, UnclippedScenesExactFaceIds)
     EXPECT_GE(done, 30);
 }
 
-// Same pictures whatever the thread count, and with every band drawn in halves.
+// Same pictures whatever the thread count, and with every band drawn in parts.
 TEST(Mesh3dReference, ThreadCountIndependent)
 {
     cv::RNG rng(0x3d54u);
@@ -597,13 +597,13 @@ TEST(Mesh3dReference, ThreadCountIndependent)
         const LibOut a = runLib(c.scene, c.canvas, c.depthIn, c.forms);
         cv::setNumThreads(std::max(2, threads));
         const LibOut b = runLib(c.scene, c.canvas, c.depthIn, c.forms);
-        LibOut halves;  // every band drawn in halves, as a thread that steals draws them
+        LibOut parts;  // every band drawn in parts, as threads share bands
         {
-            shading_test::HalfBands on(true);
-            halves = runLib(c.scene, c.canvas, c.depthIn, c.forms);
+            shading_test::SplitBands on(true);
+            parts = runLib(c.scene, c.canvas, c.depthIn, c.forms);
         }
         cv::setNumThreads(threads);
-        for (const LibOut* other : {&b, static_cast<const LibOut*>(&halves)}) {
+        for (const LibOut* other : {&b, static_cast<const LibOut*>(&parts)}) {
             EXPECT_EQ(0, cv::norm(a.canvas, other->canvas, cv::NORM_INF)) << i;
             EXPECT_EQ(0, cv::norm(a.faceIds, other->faceIds, cv::NORM_INF)) << i;
             EXPECT_EQ(0, std::memcmp(a.depth.data, other->depth.data, a.depth.total() * 4)) << i;

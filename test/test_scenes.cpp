@@ -48,11 +48,11 @@ void expectEqualReference(const shading_perf::Scene& scene, int xScale, int ySca
     for (bool gouraud : {false, true}) {
         const Mat expected = shading_ref::render(verts, faces, colors, depth, gouraud, size);
         Mat single;
-        // 3: two threads with every band drawn in two halves, as a thread that steals draws
-        // them.
+        // 3: two threads with every band drawn in parts, as threads share bands where they
+        // are few.
         for (int threads : {1, 2, 3}) {
             setNumThreads(std::min(threads, 2));
-            shading_test::HalfBands halves(threads == 3);
+            shading_test::SplitBands parts(threads == 3);
             Mat img;
             shading::render(verts2d, m.faces, m.vcolors, m.depth, img,
                             gouraud ? shading::SHADE_GOURAUD : shading::SHADE_FLAT, size);
@@ -60,7 +60,7 @@ void expectEqualReference(const shading_perf::Scene& scene, int xScale, int ySca
             // face shows; Gouraud: colours within float rounding of the double reference.
             EXPECT_LE(shading_test::maxAbsDiff(img, expected), gouraud ? 1e-4 : 1e-6)
                 << scene.name << (gouraud ? " Gouraud" : " flat") << ", " << threads
-                << (threads == 3 ? " (2 threads, half bands)" : " threads") << ", " << size;
+                << (threads == 3 ? " (2 threads, bands in parts)" : " threads") << ", " << size;
             if (single.empty())
                 single = img;
             else
@@ -85,7 +85,7 @@ TEST_P(ShadingScenes, WideCanvasEqualsReference)
 }
 
 // 768 rows: 12 bands of 64 rows (see kBandRowsLog2), fewer than 8 per thread with 2 threads, so
-// that a thread done first draws half bands.
+// that runs end within bands and a thread done first draws parts of bands.
 TEST_P(ShadingScenes, TallCanvasEqualsReference)
 {
     expectEqualReference(shading_perf::makeScene(GetParam(), 96), 1, 8);
@@ -93,7 +93,7 @@ TEST_P(ShadingScenes, TallCanvasEqualsReference)
 
 // A canvas of 16 MB or more (2048 x 700 float pixels): front-to-back bands are drawn in a scratch
 // tile and streamed out to the canvas (see kStreamedCanvasBytes), in bands of 64 rows (or their
-// halves).
+// parts).
 TEST(ShadingScenesBig, StreamedCanvasEqualsReference)
 {
     const Size size(2048, 700);

@@ -222,10 +222,10 @@ TEST(DrawTexturedMesh3d, SameImageForAnyThreadCount)
         for (int visibility : {VISIBILITY_ZBUFFER, VISIBILITY_PAINTER}) {
             s.shadeType = shade, s.visibility = visibility;
             Mat images[4];
-            const int counts[4] = {1, 2, 8, -2};  // -2: 2 threads, every band drawn in halves
+            const int counts[4] = {1, 2, 8, -2};  // -2: 2 threads, every band drawn in parts
             for (int i = 0; i < 4; i++) {
                 setNumThreads(std::abs(counts[i]));
-                shading_test::HalfBands halves(counts[i] < 0);
+                shading_test::SplitBands parts(counts[i] < 0);
                 images[i] = Mat(300, 300, CV_8UC3, Scalar::all(0));
                 drawTexturedMesh3d(images[i], verts, faces, uv, tex, kK, kZero, kZero, s);
             }

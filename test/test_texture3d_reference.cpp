@@ -746,7 +746,7 @@ TEST(Texture3dReference, BadInputThrowsAndTouchesNothing)
     EXPECT_GT(cv::norm(canvas, canvas0, cv::NORM_INF), 0);
 }
 
-// Same picture whatever the thread count, and with every band drawn in halves.
+// Same picture whatever the thread count, and with every band drawn in parts.
 TEST(Texture3dReference, ThreadCountIndependent)
 {
     cv::RNG rng(0x7e3d5);
@@ -757,13 +757,13 @@ TEST(Texture3dReference, ThreadCountIndependent)
         const LibOut a = drawTextured(c.scene, c.canvas, c.depthIn);
         cv::setNumThreads(std::max(2, threads));
         const LibOut b = drawTextured(c.scene, c.canvas, c.depthIn);
-        LibOut halves;  // every band drawn in halves, as a thread that steals draws them
+        LibOut parts;  // every band drawn in parts, as threads share bands
         {
-            shading_test::HalfBands on(true);
-            halves = drawTextured(c.scene, c.canvas, c.depthIn);
+            shading_test::SplitBands on(true);
+            parts = drawTextured(c.scene, c.canvas, c.depthIn);
         }
         cv::setNumThreads(threads);
-        for (const LibOut* other : {&b, static_cast<const LibOut*>(&halves)}) {
+        for (const LibOut* other : {&b, static_cast<const LibOut*>(&parts)}) {
             EXPECT_EQ(0, cv::norm(a.canvas, other->canvas, cv::NORM_INF)) << i;
             EXPECT_EQ(0, cv::norm(a.faceIds, other->faceIds, cv::NORM_INF)) << i;
         }

@@ -337,7 +337,8 @@ fewer faces crossing a band boundary, each sorted, tested and set up once per ba
 32 rows instead of 16 cut the instructions per render by 7% on the 512 x 512 demo, 64 instead
 of 16 by 13% on the deep random 2048 x 2048 scene; 64 instead of 32 took the demo 3-6% less
 time with 2 threads, random512 10%. Where that leaves few bands per thread, the threads still
-finish together, as the last ones are shared in halves (BandSchedule). */
+finish together, as runs end within bands and the last bands are shared in halves and
+quarters (BandSchedule). */
 constexpr int kBandRowsLog2 = 6;
 
 //! Bits 0 .. n - 1 set, for n in [0, 64].
@@ -477,7 +478,7 @@ struct BandWorkspace {
     std::vector<float> keptWeights;  //!< deferred: per band sample, its kept face's weights
     std::vector<int> keptFaces;      //!< deferred painter's: per band sample, its face
     std::vector<double> bandDepths;   //!< painted in face order: per band sample, its depth
-    std::vector<uint64_t> partEntries;  //!< half bands: the entries reaching their rows
+    std::vector<uint64_t> partEntries;  //!< parts of bands: the entries reaching their rows
 
     size_t capacityBytes() const
     {
@@ -554,53 +555,70 @@ private:
 #endif
 };
 
-/** What BandSchedule::next hands out: a band, or one half of its rows. */
+/** What BandSchedule::next hands out: a band, or some consecutive quarters of its rows (16
+rows each). */
 struct BandPart {
-    int band;  //!< -1: none left
-    int half;  //!< -1: the whole band; 0: its upper half of rows; 1: its lower half
+    static constexpr int kQuarters = 4;
+
+    int band;      //!< -1: none left
+    int quarter;   //!< the first quarter: 0 (the band's top rows) to 3
+    int quarters;  //!< how many, 1 to 4 (4: the whole band)
+
+    bool whole() const { return quarters == kQuarters; }
 };
 
 /** Hands the bands out to the threads. Each thread owns a run of consecutive bands of about
 equal estimated cost and takes them in order, whole, as neighbouring bands share faces and
 vertices still in its caches; a thread done with its run takes bands from the far end of the
-run with the most left, so that the threads finish together. With few bands per thread it takes
-half bands, so that they finish within about half a band of each other (setting up twice the
-faces that reach both halves, where a whole band would leave one thread waiting for the other's
-last one), and threads beyond one per band start there, up to one per half band. */
+run with the most left, so that the threads finish together. With few bands per thread, where one
+band is a large share of a thread's work, it works in parts of bands: runs end where their share
+of the cost does, within a band; thieves take half bands, and quarters once less than a band is
+left in the run; an owner takes its last band in halves, then quarters, when no other run has
+as much left; and threads beyond one per band start as thieves, up to one per half band. A part
+sets up again the faces that reach the band's other parts, but a whole band would leave one
+thread waiting for the other's last one. */
 class BandSchedule {
 public:
-    /** `halves`: thieves take half bands (else whole ones, as owners do), for few bands per
-    thread, where one band is a large part of a thread's share. `onlyHalves`: owners too (every
-    band drawn in two halves: for testing that halves draw what whole bands do). */
-    BandSchedule(const std::vector<double>& cost, int workers, bool halves = true,
-                 bool onlyHalves = false)
-        : runs_(size_t(std::max(1, std::min(int(cost.size()), workers)))),
-          // Workers beyond one per band only take halves from the others' runs.
-          workers_(std::max(1, std::min(int(cost.size()) * (halves || onlyHalves ? 2 : 1),
+    /** `quarterCost`: the estimated cost of each band's four quarters, in order. `parts`: runs
+    end within bands and bands are shared in parts (else runs and claims are whole bands).
+    `splitAll`: every band is taken in parts, a quarter and three, two halves, or four quarters,
+    by band (for testing that parts draw what whole bands do). */
+    BandSchedule(const std::vector<double>& quarterCost, int workers, bool parts = true,
+                 bool splitAll = false)
+        : runs_(size_t(std::max(1, std::min(int(quarterCost.size() / kQ), workers)))),
+          // Workers beyond one per band only take parts of the others' runs.
+          workers_(std::max(1, std::min(int(quarterCost.size() / kQ) *
+                                            (parts || splitAll ? 2 : 1),
                                         workers))),
-          halves_(halves || onlyHalves), onlyHalves_(onlyHalves)
+          parts_(parts || splitAll), splitAll_(splitAll)
     {
-        const int bands = int(cost.size()), runs = int(runs_.size());
+        const int quarters = int(quarterCost.size() / kQ * kQ), runs = int(runs_.size());
+        const int unit = parts_ ? 1 : int(kQ);  // runs end on a quarter, or on a band
         double total = 0;
-        for (double c : cost)
-            total += c;
-        int band = 0;
-        double before = 0;  // cost of the bands of earlier runs
+        for (int q = 0; q < quarters; q++)
+            total += quarterCost[q];
+        int q = 0;
+        double before = 0;  // cost of the quarters of earlier runs
         for (int w = 0; w < runs; w++) {
-            const int first = band;
+            const int first = q;
             const double share = total * (w + 1) / runs;
-            while (band < bands && (w == runs - 1 || before + cost[band] / 2 <= share))
-                before += cost[band++];
-            // In halves: half h of band k is 2 k + h.
-            runs_[w].store(uint64_t(2 * first) << 32 | uint32_t(2 * band),
-                           std::memory_order_relaxed);
+            while (q < quarters) {
+                double cost = 0;
+                for (int u = q; u < q + unit; u++)
+                    cost += quarterCost[u];
+                if (w != runs - 1 && before + cost / 2 > share)
+                    break;
+                before += cost;
+                q += unit;
+            }
+            runs_[w].store(uint64_t(first) << 32 | uint32_t(q), std::memory_order_relaxed);
         }
     }
 
-    //! How many workers to start: one per run, and where halves are taken, up to one per half.
+    //! How many workers to start: one per run, and where parts are taken, up to one per half.
     int workers() const { return workers_; }
 
-    //! The next band or half band for worker w; band -1 when every one is taken.
+    //! The next band or part of one for worker w; band -1 when every one is taken.
     BandPart next(int w)
     {
         if (w < runs()) {
@@ -617,44 +635,55 @@ public:
                     victim = v, most = left;
             }
             if (victim < 0)
-                return {-1, -1};
+                return {-1, 0, 0};
             if (const BandPart part = take(victim, false); part.band >= 0)
                 return part;
         }
     }
 
 private:
-    /** Claims from run w: for its owner, its first band whole (or its first half, the other
-    one taken); for a thief, its last half. Band -1 when the run is empty. */
+    static constexpr uint32_t kQ = BandPart::kQuarters;
+
+    /** Claims from run w: for its owner, from the front, the rest of its next band within the
+    run; for a thief, from the far end, a half band or a quarter (see the class). Band -1 when the
+    run is empty. */
     BandPart take(int w, bool owner)
     {
         uint64_t run = runs_[w].load(std::memory_order_relaxed);
         for (;;) {
             const uint32_t begin = uint32_t(run >> 32), end = uint32_t(run);
             if (begin >= end)
-                return {-1, -1};
-            // Runs start and end on whole bands, and without halves both ends move by whole
-            // bands, so every claim is whole. With halves, an owner takes its last band in
-            // halves when no other run has a whole band left, so that a thread about to run out
-            // of work can share it.
-            const bool whole = owner ? !onlyHalves_ && begin % 2 == 0 && end - begin >= 2 &&
-                                           (!halves_ || end - begin >= 4 || othersHaveBand(w))
-                                     : !halves_;
-            const uint32_t count = whole ? 2 : 1;
+                return {-1, 0, 0};
+            const uint32_t left = end - begin;
+            uint32_t count;
+            if (!parts_) {
+                count = kQ;  // runs start and end on bands, and every claim is whole
+            } else if (owner) {
+                const uint32_t piece = std::min(end, (begin / kQ + 1) * kQ) - begin;
+                count = piece;
+                if (splitAll_) {
+                    const uint32_t pattern = begin / kQ % 3;  // 1 + 3, 2 + 2, four quarters
+                    count = std::min(piece, pattern == 2 ? 1 : begin % kQ ? piece : 1 + pattern);
+                } else if (piece == left && !othersHave(w, piece))
+                    count = piece == kQ ? 2 : 1;  // halves stay aligned within the band
+            } else {
+                const uint32_t piece = end - std::max(begin, (end - 1) / kQ * kQ);
+                count = !splitAll_ && piece >= 2 && end % 2 == 0 && left >= kQ ? 2 : 1;
+            }
             const uint64_t taken = owner ? run + (uint64_t(count) << 32) : run - count;
             if (runs_[w].compare_exchange_weak(run, taken, std::memory_order_relaxed)) {
-                const uint32_t half = owner ? begin : end - count;
-                return {int(half / 2), whole ? -1 : int(half % 2)};
+                const uint32_t first = owner ? begin : end - count;
+                return {int(first / kQ), int(first % kQ), int(count)};
             }
         }
     }
 
-    //! Whether a run other than w's has a band left whole.
-    bool othersHaveBand(int w) const
+    //! Whether a run other than w's has `quarters` left.
+    bool othersHave(int w, uint32_t quarters) const
     {
         for (int v = 0; v < runs(); v++) {
             const uint64_t run = runs_[v].load(std::memory_order_relaxed);
-            if (v != w && uint32_t(run) >= uint32_t(run >> 32) + 2)
+            if (v != w && uint32_t(run) >= uint32_t(run >> 32) + quarters)
                 return true;
         }
         return false;
@@ -662,15 +691,15 @@ private:
 
     int runs() const { return int(runs_.size()); }
 
-    //! Per run (worker): its first half band << 32 | its end, in half bands.
+    //! Per run (worker): its first quarter band << 32 | its end, in quarter bands.
     std::vector<std::atomic<uint64_t>> runs_;
     int workers_;
-    bool halves_, onlyHalves_;
+    bool parts_, splitAll_;
 };
 
-//! A face's cost in a band, in covered samples: setup, sort and tests (~900 instructions)
-//! against ~60 per shaded sample.
-constexpr double kBandCostPerFace = 16;
+//! A face's cost in a band, in covered samples: fitted to the demo's band times at 1 thread
+//! (62 ns a face, 0.6 ns a sample), which the knot in 3D and sphere512 follow too.
+constexpr double kBandCostPerFace = 100;
 
 /** How drawMeshInBands treats a mesh beyond the painter's order. */
 struct BandOptions {
@@ -887,16 +916,24 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // at a time, they gained nothing from the tile (the copy cost what the reads did).
     constexpr size_t kStreamedCanvasBytes = size_t(16) << 20;
     const bool streamBands = background && rowBytes * size.height >= kStreamedCanvasBytes;
-    std::vector<double> bandCost(bandCount);
-    for (int k = 0; k < bandCount; k++)
-        bandCost[k] = kBandCostPerFace * double(bandStart[k + 1] - bandStart[k]) + bandArea[k];
-    // The environment variable OPENCV_SHADING_HALF_BANDS=1 has every band drawn in halves, as
-    // thieves draw them (a testing aid: the image must not change). Read per draw, so that a
-    // test can set it.
-    const char* halvesVariable = std::getenv("OPENCV_SHADING_HALF_BANDS");
-    const bool onlyHalves = halvesVariable && std::strcmp(halvesVariable, "1") == 0;
-    BandSchedule schedule(bandCost, getNumThreads(), bandCount < 8 * getNumThreads(),
-                          onlyHalves);
+    // Each band's cost, estimated from its faces and their areas, shared by its quarters' rows.
+    std::vector<double> quarterCost(size_t(bandCount) * BandPart::kQuarters);
+    for (int k = 0; k < bandCount; k++) {
+        const double cost =
+            kBandCostPerFace * double(bandStart[k + 1] - bandStart[k]) + bandArea[k];
+        const int rows = std::min(size.height - k * bandRows, bandRows);
+        for (int q = 0; q < BandPart::kQuarters; q++) {
+            const int quarterRows = bandRows / BandPart::kQuarters;
+            const int inQuarter = std::clamp(rows - q * quarterRows, 0, quarterRows);
+            quarterCost[size_t(k) * BandPart::kQuarters + q] = cost * inQuarter / rows;
+        }
+    }
+    // The environment variable OPENCV_SHADING_SPLIT_BANDS=1 has every band drawn in parts (a
+    // testing aid: the image must not change). Read per draw, so that a test can set it.
+    const char* splitVariable = std::getenv("OPENCV_SHADING_SPLIT_BANDS");
+    const bool splitAll = splitVariable && std::strcmp(splitVariable, "1") == 0;
+    BandSchedule schedule(quarterCost, getNumThreads(), bandCount < 8 * getNumThreads(),
+                          splitAll);
 #if OPENCV_SHADING_STAGE_TIMES
     std::vector<std::pair<double, int>> workerTimes(schedule.workers(), {0.0, 0});
     const int64 bandsStart = getTickCount();
@@ -965,15 +1002,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const int band = part.band;
             const int bandY0 = band * bandRows, bandY1 = std::min(size.height, bandY0 + bandRows);
             int y0 = bandY0, y1 = bandY1;
-            if (part.half >= 0) {
-                y0 = bandY0 + part.half * (bandRows / 2);
-                y1 = std::min(bandY1, y0 + bandRows / 2);
-                if (y0 >= y1)  // the canvas's last band may have no lower half
+            if (!part.whole()) {
+                constexpr int quarterRows = bandRows / BandPart::kQuarters;
+                y0 = bandY0 + part.quarter * quarterRows;
+                y1 = std::min(bandY1, y0 + part.quarters * quarterRows);
+                if (y0 >= y1)  // the canvas's last band may end above the part
                     continue;
             }
             uint64_t* order = binned.data() + bandStart[band];  // decreasing face order
             size_t orderSize = bandStart[band + 1] - bandStart[band];
-            // The band's way of drawing, decided for the whole band (halves draw as it does).
+            // The band's way of drawing, decided for the whole band (its parts draw as it does).
             const double overdraw = bandArea[band] - double(bandY1 - bandY0) * columns;
             const size_t windingMinority =
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
@@ -985,9 +1023,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const bool inFaceOrder =
                 littleOverdraw && bandArea[band] <= kSmallFaceSamples * double(orderSize);
             const bool backToFront = littleOverdraw && !inFaceOrder;
-            if (part.half >= 0) {
-                // Half a band: its own copy of the entries whose boxes reach its rows, as the
-                // other half may be drawn at the same time and the lists are sorted in place.
+            if (!part.whole()) {
+                // Part of a band: its own copy of the entries whose boxes reach its rows, as the
+                // other parts may be drawn at the same time and the lists are sorted in place.
                 partEntries.clear();
                 for (size_t i = 0; i < orderSize; i++) {
                     const SampleBox& box = faceBox[entryFace(order[i])];
