@@ -84,26 +84,36 @@ TEST(BandSchedule, WithPartsRunsEndWithinABand)
 {
     // Costs 1, 2, 1: each worker's share is 2, so run 0 is band 0 and band 1's upper half.
     BandSchedule schedule(quartersOf({1.0, 2.0, 1.0}), 2);
-    // Worker 1 starts with the rest of band 1. Its last band is its run's last piece and no
-    // other run has a whole band left: halves, and then, no other run having a half, quarters.
-    expectTakes(schedule, {{0, "0"}, {1, "1.2-3"}, {0, "1.0-1"}, {1, "2.0-1"}, {1, "2.2"},
-                           {1, "2.3"}, {1, "none"}, {0, "none"}});
+    // Worker 1 starts with the rest of band 1. Its last band is its run's last, and no other
+    // run has a band left: it takes it in halves.
+    expectTakes(schedule, {{0, "0"}, {1, "1.2-3"}, {0, "1.0-1"}, {1, "2.0-1"}, {1, "2.2-3"},
+                           {1, "none"}, {0, "none"}});
 }
 
-TEST(BandSchedule, ThievesTakeHalvesThenQuarters)
+TEST(BandSchedule, ThievesTakeHalfBands)
 {
     BandSchedule schedule(equalBands(4), 2);  // runs 0-1, 2-3
-    // Worker 1's last band is whole (run 0 still has two). Then it takes the far half of run
-    // 0's last band, and, with less than a band left there, a quarter.
-    expectTakes(schedule, {{1, "2"}, {1, "3"}, {1, "1.2-3"}, {0, "0"}, {1, "1.1"}, {0, "1.0"},
-                           {0, "none"}, {1, "none"}});
+    // Worker 1's last band is whole (run 0 still has two). Then it takes the far halves of run
+    // 0's last band.
+    expectTakes(schedule, {{1, "2"}, {1, "3"}, {1, "1.2-3"}, {0, "0"}, {1, "1.0-1"}, {0, "none"},
+                           {1, "none"}});
 }
 
-TEST(BandSchedule, AnOwnersLastBandIsWholeWhileAnotherRunHasAsMuch)
+TEST(BandSchedule, AThiefTakesAQuarterWhereARunEndsWithinAHalf)
+{
+    // Costs 1, 2: shares of 1.5, so run 0 is band 0 and band 1's first quarter.
+    BandSchedule schedule(quartersOf({1.0, 2.0}), 2);
+    // Worker 1's run is three quarters, taken at once. A half from the far end of run 0 would
+    // cross its end: a quarter. Worker 0's last band is then taken in halves.
+    expectTakes(schedule, {{1, "1.1-3"}, {1, "1.0"}, {0, "0.0-1"}, {1, "0.2-3"}, {0, "none"},
+                           {1, "none"}});
+}
+
+TEST(BandSchedule, AnOwnersLastBandIsWholeWhileAnotherRunHasABand)
 {
     BandSchedule schedule(equalBands(4), 2);
-    expectTakes(schedule, {{0, "0"}, {0, "1"}, {1, "2"}, {1, "3.0-1"}, {0, "3.3"}, {1, "3.2"},
-                           {0, "none"}, {1, "none"}});
+    expectTakes(schedule, {{0, "0"}, {0, "1"}, {1, "2"}, {1, "3.0-1"}, {0, "3.2-3"}, {1, "none"},
+                           {0, "none"}});
 }
 
 TEST(BandSchedule, SplitAll)
@@ -128,8 +138,8 @@ TEST(BandSchedule, WorkersBeyondTheBandsTakeParts)
     BandSchedule schedule(equalBands(2), 8);  // runs 0 and 1
     ASSERT_EQ(schedule.workers(), 4);          // one per half band
     // Workers 2 and 3 have no run: each takes the far half of the run with the most left.
-    expectTakes(schedule, {{2, "0.2-3"}, {3, "1.2-3"}, {0, "0.0-1"}, {1, "1.0"}, {0, "1.1"},
-                           {0, "none"}, {1, "none"}, {2, "none"}, {3, "none"}});
+    expectTakes(schedule, {{2, "0.2-3"}, {3, "1.2-3"}, {0, "0.0-1"}, {1, "1.0-1"}, {0, "none"},
+                           {1, "none"}, {2, "none"}, {3, "none"}});
 }
 
 TEST(BandSchedule, EveryQuarterOnceUnderConcurrentTakers)

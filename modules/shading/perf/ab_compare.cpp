@@ -10,14 +10,17 @@
 // pixel). A build against a copy of itself gives 0.99-1.02 here.
 //
 //   usage: opencv_shading_ab OLD_LIB NEW_LIB SCENE [SHADE [VISIBILITY]]
-//                            [--threads N] [--frames N] [--rounds N]
+//                            [--threads N] [--frames N] [--rounds N] [--block N]
 //
 //   SCENE       a benchmark scene and its side: grid512, sphere512, random512, demo512,
 //               biggrid2048, bigsphere2048 (render) or knot3d512, torus3d2048 (drawMesh3d)
 //   SHADE       flat (default), gouraud, or for 3D phong
 //   VISIBILITY  3D only: zbuffer (default) or painter
 //   --threads   cv::setNumThreads (default 2); --frames per build and round (default 20);
-//               --rounds (default 3)
+//               --rounds (default 3); --block: frames in a row per build (default 1), the
+//               first of each not timed. Blocks of frames find what the build's own last frame
+//               left in each core's cache, as a benchmark (or a video) drawing the same scene
+//               again does; alternate frames each find the other build's.
 //
 // e.g., with the libraries of main's build and of a change's copied aside first:
 //   opencv_shading_ab /tmp/main.so /tmp/change.so torus3d2048 gouraud zbuffer --frames 15
@@ -105,7 +108,7 @@ double median(std::vector<double> v)
 int main(int argc, char** argv)
 {
     std::vector<std::string> positional;
-    int threads = 2, frames = 20, rounds = 3;
+    int threads = 2, frames = 20, rounds = 3, block = 1;
     bool help = false;
     for (int i = 1; i < argc; i++) {
         const std::string arg = argv[i];
@@ -123,6 +126,8 @@ int main(int argc, char** argv)
             frames = count("--frames");
         else if (arg == "--rounds")
             rounds = count("--rounds");
+        else if (arg == "--block")
+            block = count("--block");
         else if (arg == "-h" || arg == "--help")
             help = true;
         else
@@ -131,7 +136,7 @@ int main(int argc, char** argv)
     if (help || positional.size() < 3 || positional.size() > 5) {
         std::fprintf(stderr,
                      "usage: opencv_shading_ab OLD_LIB NEW_LIB SCENE [SHADE [VISIBILITY]] "
-                     "[--threads N] [--frames N] [--rounds N]\n"
+                     "[--threads N] [--frames N] [--rounds N] [--block N]\n"
                      "  SCENE: grid512, demo512, biggrid2048, ... or knot3d512, torus3d2048\n");
         return help ? 0 : 2;
     }
@@ -205,9 +210,12 @@ int main(int argc, char** argv)
     for (int round = 0; round < rounds; round++) {
         std::vector<double> times[2];
         for (int i = 0; i < 2 * frames; i++) {
-            const int k = i & 1;  // alternate frames: the machine's drift hits both builds
+            // Alternate frames or blocks: the machine's drift hits both builds.
+            const int k = i / block & 1;
             const int64 start = cv::getTickCount();
             frame(k);
+            if (block > 1 && i % block == 0)
+                continue;  // a block's first frame finds the other build's caches: not timed
             times[k].push_back(double(cv::getTickCount() - start) * 1000.0 /
                                cv::getTickFrequency());
         }

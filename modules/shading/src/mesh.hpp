@@ -572,11 +572,11 @@ equal estimated cost and takes them in order, whole, as neighbouring bands share
 vertices still in its caches; a thread done with its run takes bands from the far end of the
 run with the most left, so that the threads finish together. With few bands per thread, where one
 band is a large share of a thread's work, it works in parts of bands: runs end where their share
-of the cost does, within a band; thieves take half bands, and quarters once less than a band is
-left in the run; an owner takes its last band in halves, then quarters, when no other run has
-as much left; and threads beyond one per band start as thieves, up to one per half band. A part
-sets up again the faces that reach the band's other parts, but a whole band would leave one
-thread waiting for the other's last one. */
+of the cost does, within a band (at a quarter); thieves take half bands (a quarter where the run
+ends within a half); an owner takes its last band in halves when no other run has a band left;
+and threads beyond one per band start as thieves, up to one per half band. A part sets up again
+the faces that reach the band's other parts, but a whole band would leave one thread waiting for
+the other's last one. */
 class BandSchedule {
 public:
     /** `quarterCost`: the estimated cost of each band's four quarters, in order. `parts`: runs
@@ -645,8 +645,9 @@ private:
     static constexpr uint32_t kQ = BandPart::kQuarters;
 
     /** Claims from run w: for its owner, from the front, the rest of its next band within the
-    run; for a thief, from the far end, a half band or a quarter (see the class). Band -1 when the
-    run is empty. */
+    run (its last band in halves when no other run has a band left); for a thief, from the far
+    end, a half band, or a quarter where the run ends within a half. Band -1 when the run is
+    empty. */
     BandPart take(int w, bool owner)
     {
         uint64_t run = runs_[w].load(std::memory_order_relaxed);
@@ -664,11 +665,12 @@ private:
                 if (splitAll_) {
                     const uint32_t pattern = begin / kQ % 3;  // 1 + 3, 2 + 2, four quarters
                     count = std::min(piece, pattern == 2 ? 1 : begin % kQ ? piece : 1 + pattern);
-                } else if (piece == left && !othersHave(w, piece))
-                    count = piece == kQ ? 2 : 1;  // halves stay aligned within the band
+                } else if (piece == kQ && piece == left && !othersHaveBand(w)) {
+                    count = 2;  // the upper half; the lower one is then the run's last piece
+                }
             } else {
                 const uint32_t piece = end - std::max(begin, (end - 1) / kQ * kQ);
-                count = !splitAll_ && piece >= 2 && end % 2 == 0 && left >= kQ ? 2 : 1;
+                count = !splitAll_ && piece >= 2 && end % 2 == 0 ? 2 : 1;
             }
             const uint64_t taken = owner ? run + (uint64_t(count) << 32) : run - count;
             if (runs_[w].compare_exchange_weak(run, taken, std::memory_order_relaxed)) {
@@ -678,12 +680,12 @@ private:
         }
     }
 
-    //! Whether a run other than w's has `quarters` left.
-    bool othersHave(int w, uint32_t quarters) const
+    //! Whether a run other than w's has a band's worth of quarters left.
+    bool othersHaveBand(int w) const
     {
         for (int v = 0; v < runs(); v++) {
             const uint64_t run = runs_[v].load(std::memory_order_relaxed);
-            if (v != w && uint32_t(run) >= uint32_t(run >> 32) + quarters)
+            if (v != w && uint32_t(run) >= uint32_t(run >> 32) + kQ)
                 return true;
         }
         return false;
