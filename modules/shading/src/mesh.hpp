@@ -337,8 +337,8 @@ fewer faces crossing a band boundary, each sorted, tested and set up once per ba
 32 rows instead of 16 cut the instructions per render by 7% on the 512 x 512 demo, 64 instead
 of 16 by 13% on the deep random 2048 x 2048 scene; 64 instead of 32 took the demo 3-6% less
 time with 2 threads, random512 10%. Where that leaves few bands per thread, the threads still
-finish together, as runs end within bands and the last bands are shared in halves and
-quarters (BandSchedule). */
+finish together, as runs end within bands (at a quarter) and the last bands are shared in
+halves (BandSchedule). */
 constexpr int kBandRowsLog2 = 6;
 
 //! Bits 0 .. n - 1 set, for n in [0, 64].
