@@ -655,11 +655,11 @@ private:
             const uint32_t begin = uint32_t(run >> 32), end = uint32_t(run);
             if (begin >= end)
                 return {-1, 0, 0};
-            const uint32_t left = end - begin;
             uint32_t count;
             if (!parts_) {
                 count = kQ;  // runs start and end on bands, and every claim is whole
             } else if (owner) {
+                const uint32_t left = end - begin;
                 const uint32_t piece = std::min(end, (begin / kQ + 1) * kQ) - begin;
                 count = piece;
                 if (splitAll_) {
