@@ -818,6 +818,50 @@ TEST(Mesh3dReference, HandNearPlaneClipping)
     EXPECT_EQ(0, compare(sc, canvas, cv::Mat(), ref, lib, stats, "clipped floor"));
 }
 
+// Faces with a vertex that projects millions of pixels off the canvas (in front of the near
+// plane: no clipping) among small ones: the band pass's first pass, which boxes 8 faces at once
+// in 32-bit lanes where every vertex allows (the AVX2 build), must box these in 64 bits. Each
+// 3 x 3 block of small faces is followed by a far one, so that every step of 8 holds one.
+TEST(Mesh3dReference, VerticesFarOffTheCanvas)
+{
+    std::vector<Vec3d> verts, colors;
+    Faces faces;
+    cv::RNG rng(0x3d60u);
+    for (int i = 0; i < 48; i++) {
+        const double x = -0.9 + 0.15 * (i % 12), y = -0.9 + 0.45 * (i / 12);
+        const int v = (int)verts.size();
+        verts.push_back(Vec3d(x, y, 2));
+        verts.push_back(Vec3d(x + 0.3, y + 0.1, 2.5));
+        verts.push_back(Vec3d(x + 0.05, y + 0.4, 1.5));
+        faces.push_back(cv::Vec3i(v, v + 1, v + 2));
+        if (i % 3 == 2) {
+            // x = 10 * 11.7 / 1e-5 = 1.17e7 px, 3.0e9 subpixels, which wraps in 32 bits; or as
+            // far to the left, or below.
+            const double far[3][2] = { { 11.7, 0 }, { -11.7, 0.5 }, { 0.3, 11.7 } };
+            const double* d = far[i % 9 / 3];
+            verts.push_back(Vec3d(d[0], d[1], 1e-5));
+            faces.push_back(cv::Vec3i(v, v + 3, v + 2));
+        }
+    }
+    for (size_t i = 0; i < verts.size(); i++)
+        colors.push_back(
+            Vec3d(rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0)));
+    Scene sc = handScene(verts, faces, colors);
+    sc.settings.zNear = 1e-6;
+    const cv::Mat canvas(20, 24, CV_32FC3, cv::Scalar::all(-1));
+    for (int vis : { sh::VISIBILITY_ZBUFFER, sh::VISIBILITY_PAINTER })
+        for (int shade : { sh::SHADE_FLAT, sh::SHADE_GOURAUD }) {
+            sc.settings.visibility = vis;
+            sc.settings.shadeType = shade;
+            const LibOut lib = runLib(sc, canvas, cv::Mat(), Forms());
+            const shading_ref3d::Result ref = shading_ref3d::render(sc, canvas);
+            Stats stats;
+            EXPECT_EQ(0, compare(sc, canvas, cv::Mat(), ref, lib, stats,
+                                 cv::format("visibility %d shade %d", vis, shade)));
+            EXPECT_GT(stats.drawn, stats.pixels / 4);
+        }
+}
+
 // A triangle wholly between the camera and the near plane, and one behind the camera: nothing.
 TEST(Mesh3dReference, HandBehindNearPlaneDrawsNothing)
 {

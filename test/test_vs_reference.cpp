@@ -822,8 +822,10 @@ std::string describeMesh(const Mesh& m, const char* what, bool gouraud, int type
 // Library drawMesh vs reference drawMesh on sentinel-filled canvases.
 enum class MeshForm { Vectors, Mats, FloatVectors };
 
+// `drawnAs`: the mesh the reference draws instead of m (m less the faces the library skips).
 ::testing::AssertionResult meshMatches(const Mesh& m, cv::Size size, int type, bool gouraud,
-                                       MeshForm form = MeshForm::Vectors)
+                                       MeshForm form = MeshForm::Vectors,
+                                       const Mesh* drawnAs = nullptr)
 {
     const Sentinels s = sentinelsFor(type);
     cv::Mat libA = filled(size, type, s.a), libB = filled(size, type, s.b);
@@ -853,8 +855,9 @@ enum class MeshForm { Vectors, Mats, FloatVectors };
     } catch (const cv::Exception& e) {
         return ::testing::AssertionFailure() << "library threw: " << e.what();
     }
-    shading_ref::drawMesh(ref, m.verts, m.faces, m.colors, m.depth, gouraud);
-    return compareCanvases(libA, libB, s, ref, meshCoverage(size, m), tolerance(type, gouraud));
+    const Mesh& r = drawnAs ? *drawnAs : m;
+    shading_ref::drawMesh(ref, r.verts, r.faces, r.colors, r.depth, gouraud);
+    return compareCanvases(libA, libB, s, ref, meshCoverage(size, r), tolerance(type, gouraud));
 }
 
 }  // namespace
@@ -975,6 +978,38 @@ TEST(ShadingVsReference, DrawMeshSmallFacesInFaceOrder)
                     << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " depths "
                     << int(depths) << " canvas " << size;
             }
+}
+
+// A face with a NaN vertex depth has no place in the painter's order and is not drawn (the
+// reference, which has no NaN rule, draws the mesh without those faces): random big faces, drawn
+// sorted, and small ones, drawn in face order; a few NaN vertices, so that most steps of 8 faces
+// in the first pass mix faces with and without a key.
+TEST(ShadingVsReference, DrawMeshNaNDepthsSkipTheirFaces)
+{
+    cv::RNG rng(scaledSeed(143));
+    const cv::Size size(96, 72);
+    for (bool small : { false, true })
+        for (bool gouraud : { false, true }) {
+            Mesh m = small ? smallFacesMesh(rng, size, size.area() / 5, Depths::Random)
+                           : randomMesh(rng, size, 150, 200, Depths::Random, false);
+            std::vector<bool> nan(m.verts.size(), false);
+            for (size_t i = 0; i < m.depth.size(); i++)
+                if (rng.uniform(0, small ? 12 : 40) == 0) {
+                    m.depth[i] = std::numeric_limits<double>::quiet_NaN();
+                    nan[i] = true;
+                }
+            Mesh kept = m;
+            kept.faces.clear();
+            for (const cv::Vec3i& f : m.faces)
+                if (!nan[f[0]] && !nan[f[1]] && !nan[f[2]])
+                    kept.faces.push_back(f);
+            for (size_t i = 0; i < kept.depth.size(); i++)
+                if (nan[i])
+                    kept.depth[i] = 0;  // no kept face uses it
+            ASSERT_LT(kept.faces.size(), m.faces.size());
+            EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud, MeshForm::Vectors, &kept))
+                << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " small " << small;
+        }
 }
 
 TEST(ShadingVsReference, DrawMeshEmptyDepthKeepsFaceOrder)

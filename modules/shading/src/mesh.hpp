@@ -555,6 +555,31 @@ private:
 #endif
 };
 
+/** 1 where the first pass boxes 8 faces a step in 256-bit lanes, gathering their vertices: the
+AVX2 build. The baseline (SSE2, no gather instruction) keeps the loop of one face a step. */
+#if OPENCV_SHADING_SIMD128 && CV_SIMD256
+#define OPENCV_SHADING_BOX_EIGHT 1
+#else
+#define OPENCV_SHADING_BOX_EIGHT 0
+#endif
+
+#if OPENCV_SHADING_BOX_EIGHT
+//! tab[idx[0..3]]. (v256_lut's gather starts from an undefined register, which GCC 12 warns of.)
+inline v_float64x4 gatherDoubles(const double* tab, const int* idx)
+{
+    const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    return v_float64x4(_mm256_mask_i32gather_pd(
+        _mm256_setzero_pd(), tab, _mm_loadu_si128(reinterpret_cast<const __m128i*>(idx)), all, 8));
+}
+#endif
+
+//! Whether a snapped vertex lies on the narrow grid (both coordinates below 2^28 subpixels, so
+//! invalid ones do not): every box and area quantity of a face of such vertices fits 32-bit lanes.
+inline bool isNarrowPoint(const FixedPoint& p)
+{
+    return p.x > -kNarrowLimit && p.x < kNarrowLimit && p.y > -kNarrowLimit && p.y < kNarrowLimit;
+}
+
 /** What BandSchedule::next hands out: a band, or some consecutive quarters of its rows (16
 rows each). */
 struct BandPart {
@@ -749,11 +774,35 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     work.snapped.resize(vertexCount);
     const FixedPoint* const snapped = snappedGiven ? mesh.snapped.data() : work.snapped.data();
     constexpr int kVertexChunk = 2048;
-    parallel_for_(Range(0, (vertexCount + kVertexChunk - 1) / kVertexChunk), [&](const Range& r) {
-        const int end = std::min(vertexCount, r.end * kVertexChunk);
-        for (int i = r.start * kVertexChunk; i < end; i++)
-            work.snapped[i] = snapToGrid(mesh.vertices[i]);
+    // The first pass's 8-face steps read the low 32 bits of each coordinate, which hold it where
+    // every vertex is on the narrow grid (checked here), and take indices times four in 32-bit
+    // lanes, on a canvas whose every box quantity fits them.
+    const int pointCount = snappedGiven ? int(mesh.snapped.size()) : vertexCount;
+    const bool boxEightFits =
+        OPENCV_SHADING_BOX_EIGHT && pointCount < (1 << 29) &&
+        int64_t(std::max(size.width, size.height)) * kSubpixelOne < kNarrowLimit;
+    std::atomic<bool> allNarrow(boxEightFits);
+    const int passCount = boxEightFits ? pointCount : vertexCount;
+    parallel_for_(Range(0, (passCount + kVertexChunk - 1) / kVertexChunk), [&](const Range& r) {
+        const int end = std::min(passCount, r.end * kVertexChunk);
+        const int begin = r.start * kVertexChunk;
+        bool narrow = true;
+        if (!snappedGiven) {
+            // Checked on the input, a little more strictly (1 px of margin): NaN fails too.
+            constexpr double kNarrowPixels = double(kNarrowLimit / kSubpixelOne - 1);
+            for (int i = begin; i < end; i++) {
+                const Point2d v = mesh.vertices[i];
+                work.snapped[i] = snapToGrid(v);
+                narrow &= (std::abs(v.x) < kNarrowPixels) & (std::abs(v.y) < kNarrowPixels);
+            }
+        } else if (boxEightFits) {
+            for (int i = begin; i < end; i++)
+                narrow &= isNarrowPoint(snapped[i]);
+        }
+        if (!narrow)
+            allNarrow.store(false, std::memory_order_relaxed);
     });
+    [[maybe_unused]] const bool boxEight = allNarrow.load();
 
     timer.mark("snap");
     // Pass 1, parallel over chunks of faces: each face's sort key, the rows it may touch and
@@ -797,7 +846,41 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         uint64_t* count = &binCursor[size_t(chunk) * bandCount];
         double* area = &binArea[size_t(chunk) * bandCount];
         const int end = std::min(faceCount, (chunk + 1) * chunkFaces);
-        for (int i = chunk * chunkFaces; i < end; i++) {
+        // A boxed face's share of each band it reaches: its count, winding and area. Consecutive
+        // faces within one band (the common case) add up in registers, the same sums in the same
+        // order, not through memory (a store and a load of the sum per face: the critical path
+        // of the 8-face steps).
+        int runBand = -1;
+        uint64_t runCount = 0;
+        double runArea = 0;
+        auto endRun = [&] {
+            if (runBand >= 0)
+                count[runBand] += runCount, area[runBand] = runArea;
+            runBand = -1;
+        };
+        auto countFace = [&](const SampleBox& box, double signedArea) {
+            const double faceArea = std::abs(signedArea);
+            const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
+            const int firstBand = box.rowBegin >> shift;
+            if (firstBand == (box.rowEnd - 1) >> shift) {
+                if (firstBand != runBand) {
+                    endRun();
+                    runBand = firstBand, runCount = 0, runArea = area[firstBand];
+                }
+                runCount += counted;
+                runArea += faceArea;
+                return;
+            }
+            endRun();
+            const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
+            forEachBand(box, [&](int k) {
+                count[k] += counted;
+                const int inBand = std::min(box.rowEnd, (k + 1) * rowsPerBand) -
+                                   std::max(box.rowBegin, k * rowsPerBand);
+                area[k] += areaPerRow * inBand;
+            });
+        };
+        auto boxFace = [&](int i) {
             const Vec3i& f = mesh.faces[i];
             SampleBox& box = faceBox[i];
             box.rowBegin = box.rowEnd = 0;  // culled
@@ -814,7 +897,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     faceKey[i] = key;
                 }
                 if (std::isnan(key))
-                    continue;  // no place in the order: not drawn
+                    return;  // no place in the order: not drawn
                 if (std::abs(key) < inf) {
                     lo = std::min(lo, key);
                     hi = std::max(hi, key);
@@ -823,29 +906,105 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const FixedPoint p[3] = {vertexAt[f[0]], vertexAt[f[1]], vertexAt[f[2]]};
             if (!triangleBox(p, canvasSize, box)) {
                 box.rowBegin = box.rowEnd = 0;
-                continue;
+                return;
             }
             // In pixels, for estimating each band's overdraw; the sign gives the winding.
             const double signedArea =
                 (double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
                  double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
                 (0.5 / double(kSubpixelOne * kSubpixelOne));
-            const double faceArea = std::abs(signedArea);
-            const uint64_t counted = 1 + (signedArea > 0 ? kClockwiseOne : 0);  // y points down
-            const int firstBand = box.rowBegin >> shift;
-            if (firstBand == (box.rowEnd - 1) >> shift) {
-                count[firstBand] += counted;  // the common case: within one band
-                area[firstBand] += faceArea;
-                continue;
+            countFace(box, signedArea);
+        };
+        int i = chunk * chunkFaces;
+#if OPENCV_SHADING_BOX_EIGHT
+        if (boxEight) {
+            // boxFace for 8 faces a step, the same keys, boxes and areas bit for bit (the same
+            // IEEE operations in the same order, no FMA), in 32-bit lanes from the
+            // coordinates' low words (every vertex is narrow).
+            const int* const faceWords = reinterpret_cast<const int*>(mesh.faces.data());
+            const int* const pointWords = reinterpret_cast<const int*>(vertexAt);
+            static_assert(sizeof(FixedPoint) == 16, "four 32-bit words, x's low one first");
+            const v_int32x8 laneBit(1, 2, 4, 8, 16, 32, 64, 128);
+            const v_int32x8 roundUp = v256_setall_s32(int(kSubpixelOne - 1));
+            const v_int32x8 zero = v256_setzero_s32();
+            const v_int32x8 widthFixed = v256_setall_s32(int(canvasSize.width * kSubpixelOne));
+            const v_int32x8 width = v256_setall_s32(canvasSize.width);
+            const v_int32x8 height = v256_setall_s32(canvasSize.height);
+            const v_int32x8 lastColumn = v256_setall_s32(canvasSize.width - 1);
+            const v_float64x4 third = v256_setall_f64(3.0), infinity = v256_setall_f64(inf),
+                              minusInfinity = v256_setall_f64(-inf);
+            const v_float64x4 toPixels =
+                v256_setall_f64(0.5 / double(kSubpixelOne * kSubpixelOne));
+            v_float64x4 lowest = infinity, highest = minusInfinity;
+            for (; i + 8 <= end; i += 8) {
+                v_int32x8 v0, v1, v2;
+                v_load_deinterleave(faceWords + 3 * size_t(i), v0, v1, v2);
+                // The low words of x (word 0 of 4) and y (word 2).
+                const v_int32x8 w0 = v0 << 2, w1 = v1 << 2, w2 = v2 << 2;
+                const v_int32x8 x0 = v_lut(pointWords, w0), y0 = v_lut(pointWords + 2, w0);
+                const v_int32x8 x1 = v_lut(pointWords, w1), y1 = v_lut(pointWords + 2, w1);
+                const v_int32x8 x2 = v_lut(pointWords, w2), y2 = v_lut(pointWords + 2, w2);
+                int keyed = 0xff;  // bit j: face i + j has a key (not NaN)
+                if constexpr (decltype(kByDepth)::value) {
+                    int corner[3][8];
+                    v_store(corner[0], v0), v_store(corner[1], v1), v_store(corner[2], v2);
+                    for (int h = 0; h < 8; h += 4) {
+                        v_float64x4 key;
+                        if constexpr (decltype(kByFaceDepth)::value) {
+                            key = v256_load(givenKey + i + h);
+                        } else {
+                            const v_float64x4 d0 = gatherDoubles(vertexDepth, corner[0] + h),
+                                              d1 = gatherDoubles(vertexDepth, corner[1] + h),
+                                              d2 = gatherDoubles(vertexDepth, corner[2] + h);
+                            key = (d0 + d1 + d2) / third;  // NaN if any is
+                            if (decltype(kDepthTested)::value)  // the mean stays where NaN
+                                key = v_select(key == key, v_min(v_min(d0, d1), d2), key);
+                            v_store(faceKey + i + h, key);
+                        }
+                        // (OpenCV's != is an ordered compare, false for NaN: hence ==.)
+                        keyed &= ~((~v_signmask(key == key) & 0xf) << h);
+                        const v_float64x4 finite = v_abs(key) < infinity;
+                        lowest = v_min(lowest, v_select(finite, key, infinity));
+                        highest = v_max(highest, v_select(finite, key, minusInfinity));
+                    }
+                }
+                // triangleBox in 32-bit lanes.
+                const v_int32x8 xMin = v_min(v_min(x0, x1), x2), xMax = v_max(v_max(x0, x1), x2);
+                const v_int32x8 yMin = v_min(v_min(y0, y1), y2), yMax = v_max(v_max(y0, y1), y2);
+                auto toPixel = [&](const v_int32x8& fixed, const v_int32x8& limit) {
+                    return v_min(v_max((fixed + roundUp) >> kSubpixelBits, zero), limit);
+                };
+                const v_int32x8 rowBegin = toPixel(yMin, height), rowEnd = toPixel(yMax, height);
+                const v_int32x8 colFirst = v_min(toPixel(xMin, width), lastColumn);
+                const v_int32x8 colLast = v_min(xMax >> kSubpixelBits, lastColumn);
+                const v_int32x8 boxed = (xMax >= zero) & (xMin <= widthFixed) &
+                                        (rowBegin < rowEnd) & (colFirst <= colLast);
+                const int drawn = v_signmask(boxed) & keyed;
+                const v_int32x8 drawnMask = (v256_setall_s32(drawn) & laneBit) == laneBit;
+                v_store_interleave(reinterpret_cast<int*>(faceBox + i), rowBegin & drawnMask,
+                                   rowEnd & drawnMask, colFirst, colLast);
+                if (!drawn)
+                    continue;
+                // The area as boxFace computes it, from the same exact differences.
+                const v_int32x8 dx1 = x1 - x0, dy2 = y2 - y0, dx2 = x2 - x0, dy1 = y1 - y0;
+                double signedArea[8];
+                v_store(signedArea, (v_cvt_f64(dx1) * v_cvt_f64(dy2) -
+                                     v_cvt_f64(dx2) * v_cvt_f64(dy1)) * toPixels);
+                v_store(signedArea + 4, (v_cvt_f64_high(dx1) * v_cvt_f64_high(dy2) -
+                                         v_cvt_f64_high(dx2) * v_cvt_f64_high(dy1)) * toPixels);
+                for (int j = 0; j < 8; j++)
+                    if (drawn >> j & 1)
+                        countFace(faceBox[i + j], signedArea[j]);
             }
-            const double areaPerRow = faceArea / (box.rowEnd - box.rowBegin);
-            forEachBand(box, [&](int k) {
-                count[k] += counted;
-                const int inBand = std::min(box.rowEnd, (k + 1) * rowsPerBand) -
-                                   std::max(box.rowBegin, k * rowsPerBand);
-                area[k] += areaPerRow * inBand;
-            });
+            double lows[4], highs[4];
+            v_store(lows, lowest), v_store(highs, highest);
+            for (int j = 0; j < 4; j++)
+                lo = std::min(lo, lows[j]), hi = std::max(hi, highs[j]);
         }
+#endif
+        for (; i < end; i++)
+            boxFace(i);
+        endRun();
         chunkDepthRange[chunk] = {lo, hi};
     };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
