@@ -573,6 +573,52 @@ inline v_float64x4 gatherDoubles(const double* tab, const int* idx)
 }
 #endif
 
+/** Snaps in[0 .. count) into out (snapToGrid, bit for bit); returns whether every vertex is
+within kNarrowPixels on both axes (NaN is not), so lies on the narrow grid. */
+inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
+{
+    // A little stricter than the narrow grid (1 px of margin), checked on the input.
+    constexpr double kNarrowPixels = double(kNarrowLimit / kSubpixelOne - 1);
+    bool narrow = true;
+    int i = 0;
+#if OPENCV_SHADING_BOX_EIGHT
+    // Two vertices (four coordinates) a step: roundHalfAway as truncation plus the same
+    // correction, then the integer-valued double (below 2^51) read off its bits beside 2^52 + 2^51.
+    const __m256d scale = _mm256_set1_pd(double(kSubpixelOne)), half = _mm256_set1_pd(0.5);
+    const __m256d minusHalf = _mm256_set1_pd(-0.5), one = _mm256_set1_pd(1.0);
+    const __m256d magic = _mm256_set1_pd(6755399441055744.0);  // 2^52 + 2^51
+    const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
+    const __m256d maxCoordinate = _mm256_set1_pd(kMaxCoordinate);
+    const __m256d narrowBound = _mm256_set1_pd(kNarrowPixels);
+    const __m256i invalid = _mm256_set_epi64x(0, kInvalidCoordinate, 0, kInvalidCoordinate);
+    __m256d allNarrow = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    for (; i + 2 <= count; i += 2) {
+        const __m256d v = _mm256_loadu_pd(&in[i].x);
+        const __m256d magnitude = _mm256_and_pd(v, absMask);
+        // A vertex is valid where both of its coordinates are in range (NaN is not).
+        const __m256d inRange = _mm256_cmp_pd(magnitude, maxCoordinate, _CMP_LE_OQ);
+        const __m256d valid = _mm256_and_pd(inRange, _mm256_permute_pd(inRange, 0x5));
+        allNarrow = _mm256_and_pd(allNarrow, _mm256_cmp_pd(magnitude, narrowBound, _CMP_LT_OQ));
+        const __m256d scaled = _mm256_mul_pd(v, scale);
+        const __m256d truncated = _mm256_round_pd(scaled, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+        const __m256d frac = _mm256_sub_pd(scaled, truncated);
+        const __m256d up = _mm256_and_pd(_mm256_cmp_pd(frac, half, _CMP_GE_OQ), one);
+        const __m256d down = _mm256_and_pd(_mm256_cmp_pd(frac, minusHalf, _CMP_LE_OQ), one);
+        const __m256d rounded = _mm256_sub_pd(_mm256_add_pd(truncated, up), down);
+        const __m256i bits = _mm256_sub_epi64(_mm256_castpd_si256(_mm256_add_pd(rounded, magic)),
+                                              _mm256_castpd_si256(magic));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i),
+                            _mm256_blendv_epi8(invalid, bits, _mm256_castpd_si256(valid)));
+    }
+    narrow = _mm256_movemask_pd(allNarrow) == 0xf;
+#endif
+    for (; i < count; i++) {
+        out[i] = snapToGrid(in[i]);
+        narrow &= (std::abs(in[i].x) < kNarrowPixels) & (std::abs(in[i].y) < kNarrowPixels);
+    }
+    return narrow;
+}
+
 //! Whether a snapped vertex lies on the narrow grid (both coordinates below 2^28 subpixels, so
 //! invalid ones do not): every box and area quantity of a face of such vertices fits 32-bit lanes.
 inline bool isNarrowPoint(const FixedPoint& p)
@@ -788,13 +834,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         const int begin = r.start * kVertexChunk;
         bool narrow = true;
         if (!snappedGiven) {
-            // Checked on the input, a little more strictly (1 px of margin): NaN fails too.
-            constexpr double kNarrowPixels = double(kNarrowLimit / kSubpixelOne - 1);
-            for (int i = begin; i < end; i++) {
-                const Point2d v = mesh.vertices[i];
-                work.snapped[i] = snapToGrid(v);
-                narrow &= (std::abs(v.x) < kNarrowPixels) & (std::abs(v.y) < kNarrowPixels);
-            }
+            narrow = snapPoints(mesh.vertices.data() + begin, work.snapped.data() + begin,
+                                end - begin);
         } else if (boxEightFits) {
             for (int i = begin; i < end; i++)
                 narrow &= isNarrowPoint(snapped[i]);
