@@ -555,8 +555,9 @@ private:
 #endif
 };
 
-/** 1 where the first pass boxes 8 faces a step in 256-bit lanes, gathering their vertices: the
-AVX2 build. The baseline (SSE2, no gather instruction) keeps the loop of one face a step. */
+/** 1 where the first pass boxes 8 faces a step in 256-bit lanes, gathering their vertices, and
+snapping takes two vertices a step: the AVX2 build. The baseline (SSE2, no gather instruction)
+keeps the loops of one face and one vertex a step. */
 #if OPENCV_SHADING_SIMD128 && CV_SIMD256
 #define OPENCV_SHADING_BOX_EIGHT 1
 #else
