@@ -615,7 +615,7 @@ inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
 #endif
     for (; i < count; i++) {
         out[i] = snapToGrid(in[i]);
-        narrow &= (std::abs(in[i].x) < kNarrowPixels) & (std::abs(in[i].y) < kNarrowPixels);
+        narrow &= std::abs(in[i].x) < kNarrowPixels && std::abs(in[i].y) < kNarrowPixels;
     }
     return narrow;
 }
