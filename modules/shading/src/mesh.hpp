@@ -575,14 +575,15 @@ inline v_float64x4 gatherDoubles(const double* tab, const int* idx)
 #endif
 
 /** Snaps in[0 .. count) into out (snapToGrid, bit for bit); returns whether every vertex is
-within kNarrowPixels on both axes (NaN is not), so lies on the narrow grid. */
+within kNarrowPixels on both axes (NaN is not), so lies on the narrow grid. Only the AVX2 build,
+whose first pass uses that, checks: the baseline returns false. */
 inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
 {
-    // A little stricter than the narrow grid (1 px of margin), checked on the input.
-    constexpr double kNarrowPixels = double(kNarrowLimit / kSubpixelOne - 1);
-    bool narrow = true;
+    bool narrow = OPENCV_SHADING_BOX_EIGHT;
     int i = 0;
 #if OPENCV_SHADING_BOX_EIGHT
+    // A little stricter than the narrow grid (1 px of margin), checked on the input.
+    constexpr double kNarrowPixels = double(kNarrowLimit / kSubpixelOne - 1);
     // Two vertices (four coordinates) a step: roundHalfAway as truncation plus the same
     // correction, then the integer-valued double (below 2^51) read off its bits beside 2^52 + 2^51.
     const __m256d scale = _mm256_set1_pd(double(kSubpixelOne)), half = _mm256_set1_pd(0.5);
@@ -615,7 +616,9 @@ inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
 #endif
     for (; i < count; i++) {
         out[i] = snapToGrid(in[i]);
+#if OPENCV_SHADING_BOX_EIGHT
         narrow &= std::abs(in[i].x) < kNarrowPixels && std::abs(in[i].y) < kNarrowPixels;
+#endif
     }
     return narrow;
 }
