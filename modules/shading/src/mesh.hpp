@@ -1536,6 +1536,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             }
                             if constexpr (std::is_same<Shader, GouraudShader<T>>::value)
                                 bf.shader.shadeRun(bf.triangle, row, y, xBegin, a, b);
+                            else if constexpr (std::is_same<Shader, FlatShader<T>>::value)
+                                bf.shader.template shadeRun<true>(bf.triangle, row, y, xBegin,
+                                                                  a, b);
                             else
                                 bf.shader(bf.triangle, row, y, xBegin, a, b);
                         });
