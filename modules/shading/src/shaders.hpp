@@ -54,6 +54,27 @@ inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd,
     storePixel(p, base + step * i);
 }
 
+/** Sets the float RGB pixels [p, end), at least four, to the first three lanes of `color`: four
+pixels a step, then the last four again, ending at `end` (they start on a pixel, so the same
+three vectors): no loop over what is left, whose exit the runs' lengths would mispredict. */
+__attribute__((always_inline)) inline void storeColorGroups(float* p, float* const end,
+                                                            const v_float32x4& color)
+{
+    const float r = v_extract_n<0>(color), g = v_extract_n<1>(color), b = v_extract_n<2>(color);
+    const v_float32x4 c0(r, g, b, r), c1(g, b, r, g), c2(b, r, g, b);
+    for (; end - p >= 12; p += 12) {
+        v_store(p, c0);
+        v_store(p + 4, c1);
+        v_store(p + 8, c2);
+    }
+    if (p < end) {
+        p = end - 12;
+        v_store(p, c0);
+        v_store(p + 4, c1);
+        v_store(p + 8, c2);
+    }
+}
+
 /** Sets pixels [0, n) (n >= 1) of the float RGB run at `first` to `color` (its first three
 lanes), touching nothing outside the run, with no branch for runs of up to four pixels: four
 8 + 4-byte stores at pixels min(j, n - 1), j = 0 .. 3, the last pixel stored again where the run
@@ -64,14 +85,13 @@ grid's), where the loop predicts well and stores less. */
 __attribute__((always_inline)) inline void storeColorRun(float* first, int n,
                                                          const v_float32x4& color)
 {
+    if (n > 4) {
+        storeColorGroups(first, first + 3 * n, color);
+        return;
+    }
     const int lastPixel = n - 1;
     for (int j = 0; j < 4; j++)
         storePixel(first + 3 * std::min(j, lastPixel), color);
-    if (n > 4) {
-        for (int k = 4; k < lastPixel; k++)
-            v_store(first + 3 * k, color);
-        storePixel(first + 3 * lastPixel, color);
-    }
 }
 #else
 inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, const float base[3],
@@ -87,8 +107,8 @@ inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, co
 #endif
 
 /** Sets pixels [xBegin, xEnd) of an RGB row to `color`, touching nothing outside them. Float
-rows are written with 16-byte stores: four pixels per three stores in long runs, one per pixel
-(its fourth lane overwritten by the next pixel's store) in short ones. */
+rows are written with 16-byte stores: four pixels per three stores in runs of four pixels or
+more, one per pixel (its fourth lane overwritten by the next pixel's store) in shorter ones. */
 template <typename T>
 inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 {
@@ -97,14 +117,9 @@ inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 #if OPENCV_SHADING_SIMD128
     if constexpr (std::is_same<T, float>::value) {
         const v_float32x4 c0(color[0], color[1], color[2], color[0]);
-        if (xEnd - xBegin >= 8) {
-            const v_float32x4 c1(color[1], color[2], color[0], color[1]);
-            const v_float32x4 c2(color[2], color[0], color[1], color[2]);
-            for (; end - p >= 12; p += 12) {
-                v_store(p, c0);
-                v_store(p + 4, c1);
-                v_store(p + 8, c2);
-            }
+        if (xEnd - xBegin >= 4) {
+            storeColorGroups(p, end, c0);
+            return;
         }
         for (; end - p > 3; p += 3)
             v_store(p, c0);
