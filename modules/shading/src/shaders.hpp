@@ -78,10 +78,11 @@ __attribute__((always_inline)) inline void storeColorGroups(float* p, float* con
 /** Sets pixels [0, n) (n >= 1) of the float RGB run at `first` to `color` (its first three
 lanes), touching nothing outside the run, with no branch for runs of up to four pixels: four
 8 + 4-byte stores at pixels min(j, n - 1), j = 0 .. 3, the last pixel stored again where the run
-is shorter. For the runs that coverage claims leave (CoverageBits::claim), whose lengths (1 to 8
-pixels on the demo mesh) vary from one run to the next: a store loop's exit, mispredicted on
-many of them, cost the demo mesh 4% of its frame in flat. Not for the spans of a regular mesh (a
-grid's), where the loop predicts well and stores less. */
+is shorter; longer runs by storeColorGroups. For the runs that coverage claims leave
+(CoverageBits::claim), whose lengths (1 to 8 pixels on the demo mesh) vary from one run to the
+next: a store loop's exit, mispredicted on many of them, cost the demo mesh 4% of its frame in
+flat. Not for the spans of a regular mesh (a grid's), where the loop predicts well and stores
+less. */
 __attribute__((always_inline)) inline void storeColorRun(float* first, int n,
                                                          const v_float32x4& color)
 {
