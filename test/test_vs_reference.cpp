@@ -980,6 +980,49 @@ TEST(ShadingVsReference, DrawMeshSmallFacesInFaceOrder)
             }
 }
 
+// The tiny faces of a band drawn in face order are set up 8 at a time, without sorting their
+// vertices, where they fit one vector of columns (mesh.hpp, raster.hpp: smallEdgesEight); the
+// rest one at a time. Here: small faces wound both ways (a minority reversed, so the band is
+// still drawn in face order) among needles a few columns wide but 10^5 pixels tall, and slivers
+// from the canvas's first columns to 8 10^5 pixels left of it, whose areas and edge functions
+// need more than 32 bits: each face as the reference draws it.
+TEST(ShadingVsReference, DrawMeshNeedlesAmongSmallFacesInFaceOrder)
+{
+    cv::RNG rng(scaledSeed(147));
+    const cv::Size size(2048, 40);
+    for (bool gouraud : { false, true }) {
+        Mesh m = smallFacesMesh(rng, size, size.area() / 5, Depths::Random);
+        for (size_t f = 0; f < m.faces.size(); f += 7)
+            std::swap(m.faces[f][1], m.faces[f][2]);
+        for (int i = 0; i < 8; i++) {
+            const double y = rng.uniform(2, size.height - 4) - 0.2;
+            const double far = 1e5 * (i % 4 < 2 ? 1 : -1);
+            Point2d p[3];
+            if (i % 2 == 0) {  // tall, 0.4 px wide: it reaches columns x and x + 1 at most
+                const double x = rng.uniform(0.0, size.width - 2.0);
+                p[0] = Point2d(x, y - far), p[1] = Point2d(x + 0.4, y), p[2] = Point2d(x + 0.1, y + 3);
+            } else {  // 0.1 px tall, from x = -8 10^5 to the first few columns
+                const double x = rng.uniform(0.0, 5.0);
+                p[0] = Point2d(-8 * std::abs(far), y + 0.15), p[1] = Point2d(x, y + 0.25),
+                p[2] = Point2d(x + 2, y + 0.2);
+            }
+            if (i % 4 == 0)
+                std::swap(p[1], p[2]);
+            const int first = int(m.verts.size());
+            for (const Point2d& q : p) {
+                m.verts.push_back(q);
+                m.colors.push_back(randomColour(rng, 0, 1));
+                m.depth.push_back(rng.uniform(-1.0, 1.0));
+            }
+            // Among the small faces, so that they share 8-face steps.
+            m.faces.insert(m.faces.begin() + rng.uniform(0, int(m.faces.size())),
+                           cv::Vec3i(first, first + 1, first + 2));
+        }
+        EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud))
+            << describeMesh(m, "drawMesh", gouraud, CV_32FC3);
+    }
+}
+
 // A face with a NaN vertex depth has no place in the painter's order and is not drawn (the
 // reference, which has no NaN rule, draws the mesh without those faces): random big faces, drawn
 // sorted, and small ones, drawn in face order; a few NaN vertices, so that most steps of 8 faces

@@ -402,6 +402,54 @@ __attribute__((noinline)) void walkWiderSmallRows(int columns, int begin, int en
                                                    perColumn, perRow, spanFn);
 }
 
+#if CV_SIMD256
+/** walkSmallTriangle's edge functions of 8 faces at once, for the meshes of tiny faces: the same
+three (at0, perColumn, perRow), bit for bit, in another order, without sorting the vertices. x[j], y[j]: vertex j of
+each face (given order, narrow, so their low words); firstColumn and firstRow: where its walk
+starts (t.smallFirstColumn and the walk's first row). Writes lane i to at0[e][i] etc. Returns
+bit i set where face i has a nonzero area and is small enough for one vector of columns (at most
+kSmallLanes): the others are set up as usual.
+
+Why no sort: with A = (v2 - v0) x (v1 - v0), the edges u -> v in the cyclic order (v0 v1, v1 v2,
+v2 v0) all have F(w) = A at their third vertex w. walkSmallTriangle's s F of edge a -> b (a above
+b, s = 1 for a left edge, where F(w) > 0) is then sign(A) F_uv whichever of u, v is above (both
+signs flip with the direction), and the edge is left where A > 0 unless v is above u. */
+inline int smallEdgesEight(const v_int32x8 x[3], const v_int32x8 y[3],
+                           const v_int32x8& firstColumn, const v_int32x8& firstRow,
+                           int32_t* const at0[3], int32_t* const perColumn[3],
+                           int32_t* const perRow[3])
+{
+    const v_int32x8 zero = v256_setzero_s32(), one = v256_setall_s32(1);
+    const v_int32x8 xMin = v_min(v_min(x[0], x[1]), x[2]), xMax = v_max(v_max(x[0], x[1]), x[2]);
+    const v_int32x8 yMin = v_min(v_min(y[0], y[1]), y[2]), yMax = v_max(v_max(y[0], y[1]), y[2]);
+    const v_int32x8 limit = v256_setall_s32(int(kSmallColumns * kSubpixelOne));
+    // setupSorted's small test and its column count (a sample x has x < ceil(xMax / 256)).
+    const v_int32x8 columnsEnd =
+        (xMax + v256_setall_s32(int(kSubpixelOne - 1))) >> kSubpixelBits;
+    const v_int32x8 fits = (xMax - xMin < limit) & (yMax - yMin < limit) &
+                           (columnsEnd - firstColumn <= v256_setall_s32(kSmallLanes));
+    // Within these extents every product below is under 2^26 in magnitude.
+    const v_int32x8 area = (x[2] - x[0]) * (y[1] - y[0]) - (y[2] - y[0]) * (x[1] - x[0]);
+    const v_int32x8 negative = area < zero;  // all ones: v is negated as (v ^ m) - m
+    const v_int32x8 positive = area > zero;
+    const v_int32x8 ox = firstColumn << kSubpixelBits, oy = firstRow << kSubpixelBits;
+    for (int e = 0; e < 3; e++) {
+        const v_int32x8 &ux = x[e], &uy = y[e], &vx = x[(e + 1) % 3], &vy = y[(e + 1) % 3];
+        const v_int32x8 dx = vx - ux, dy = vy - uy;
+        const v_int32x8 f = (ox - ux) * dy - (oy - uy) * dx;
+        const v_int32x8 left = positive ^ (uy > vy);
+        const v_int32x8 horizontal = dy == zero;  // never active: always passes
+        v_store(at0[e], v_select(horizontal, one, ((f ^ negative) - negative) + (left & one)));
+        v_store(perColumn[e],
+                v_select(horizontal, zero, ((dy ^ negative) - negative) << kSubpixelBits));
+        const v_int32x8 notNegative = ~negative;  // -s dx = (dx ^ m) - m with m = ~negative
+        v_store(perRow[e],
+                v_select(horizontal, zero, ((dx ^ notNegative) - notNegative) << kSubpixelBits));
+    }
+    return v_signmask(v_reinterpret_as_f32(fits & (negative | positive)));
+}
+#endif
+
 /** walkTriangle for a small triangle (t.smallFirstColumn >= 0) over rows [begin, end): the
 same spans, found by testing the samples of each row from the box's first column against the
 three edges, a vector of columns at a time (as many vectors as t.smallColumnCount needs: one
