@@ -1023,6 +1023,36 @@ TEST(ShadingVsReference, DrawMeshNeedlesAmongSmallFacesInFaceOrder)
     }
 }
 
+// A band drawn front to back skips the rows that are final everywhere: here a near rectangle
+// covers the top rows of the canvas, so the tiny faces behind it that reach below it are walked
+// from a row after their first (their edge functions stepped there), wound both ways (a closed
+// surface's band, drawn front to back).
+TEST(ShadingVsReference, DrawMeshSmallFacesBelowFinalRows)
+{
+    cv::RNG rng(scaledSeed(149));
+    const cv::Size size(64, 32);
+    for (bool gouraud : { false, true }) {
+        Mesh m = smallFacesMesh(rng, cv::Size(size.width, 6), 200, Depths::Random);
+        for (size_t f = 0; f < m.faces.size(); f += 2)
+            std::swap(m.faces[f][1], m.faces[f][2]);
+        for (size_t v = 0; v < m.verts.size(); v++) {
+            m.verts[v].y += 8;  // rows 6 to 16
+            m.depth[v] += 3;    // behind the rectangle
+        }
+        const int first = int(m.verts.size());
+        for (const Point2d& q : { Point2d(-1, -1), Point2d(size.width + 1, -1),
+                                  Point2d(size.width + 1, 10.5), Point2d(-1, 10.5) }) {
+            m.verts.push_back(q);
+            m.colors.push_back(randomColour(rng, 0, 1));
+            m.depth.push_back(0);
+        }
+        m.faces.push_back(cv::Vec3i(first, first + 1, first + 2));
+        m.faces.push_back(cv::Vec3i(first, first + 2, first + 3));
+        EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud))
+            << describeMesh(m, "drawMesh", gouraud, CV_32FC3);
+    }
+}
+
 // A face with a NaN vertex depth has no place in the painter's order and is not drawn (the
 // reference, which has no NaN rule, draws the mesh without those faces): random big faces, drawn
 // sorted, and small ones, drawn in face order; a few NaN vertices, so that most steps of 8 faces

@@ -1312,69 +1312,99 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             };
             int batchFaces[kBatch];
 #if OPENCV_SHADING_BOX_EIGHT
-            /* Draws faces[0 .. count) in face order, each span by paintSpan, for a shader that does
-            not read the triangle's setup (flat): the tiny faces' edge functions are set up 8 at a
-            time (smallEdgesEight) and walked by walkSmallRows; the others as prepareBatch and
-            walkTriangle do. Out of line: inlined, it cost the band loop's other paths 2-3%.
-            (Gouraud, whose shader reads the setup, lost 9-18% on the grids this way: its setup
-            and shader in a face's turn, or in a loop over the batch as prepareBatch does.) */
-            auto paintSmallFaces = [&](const int* faces, int count,
-                                       auto& paintSpan) __attribute__((noinline)) {
-                alignas(32) int32_t x[3][kBatch], y[3][kBatch];
+            /* The tiny faces of a batch, for a shader that does not read the triangle's setup
+            (flat): their edge functions set up 8 at a time (smallEdgesEight), to be walked by
+            walkSmallRows (walkSmall); the others are set up as prepareBatch does. */
+            struct SmallFaces {
+                alignas(32) int32_t at0[3][kBatch], perColumn[3][kBatch], perRow[3][kBatch];
                 alignas(32) int32_t firstColumn[kBatch], firstRow[kBatch], endRow[kBatch];
                 Vec3i corners[kBatch];
+                uint32_t small;  //!< bit i: face i is set up here
+            };
+            auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out) {
+                alignas(32) int32_t x[3][kBatch], y[3][kBatch];
                 for (int i = 0; i < count; i++) {
-                    corners[i] = faceAt[faces[i]];
+                    out.corners[i] = faceAt[faces[i]];
                     const SampleBox& box = faceBox[faces[i]];
-                    firstColumn[i] = box.colFirst;
-                    firstRow[i] = std::max(box.rowBegin, y0);
-                    endRow[i] = std::min(box.rowEnd, y1);
+                    out.firstColumn[i] = box.colFirst;
+                    out.firstRow[i] = std::max(box.rowBegin, y0);
+                    out.endRow[i] = std::min(box.rowEnd, y1);
                     for (int j = 0; j < 3; j++) {
-                        const FixedPoint& p = snapped[corners[i][j]];
+                        const FixedPoint& p = snapped[out.corners[i][j]];
                         x[j][i] = int32_t(p.x), y[j][i] = int32_t(p.y);  // narrow
-                        shaders.prefetchVertex(corners[i][j]);
+                        shaders.prefetchVertex(out.corners[i][j]);
                     }
                 }
                 const int lanes = (count + 7) & ~7;
                 for (int i = count; i < lanes; i++) {  // a zero area: not set up
-                    firstColumn[i] = firstRow[i] = 0;
+                    out.firstColumn[i] = out.firstRow[i] = 0;
                     for (int j = 0; j < 3; j++)
                         x[j][i] = y[j][i] = 0;
                 }
-                alignas(32) int32_t at0[3][kBatch], perColumn[3][kBatch], perRow[3][kBatch];
-                uint32_t small = 0;
+                out.small = 0;
                 for (int g = 0; g < lanes; g += 8) {
                     const v_int32x8 xs[3] = {v256_load(x[0] + g), v256_load(x[1] + g),
                                              v256_load(x[2] + g)};
                     const v_int32x8 ys[3] = {v256_load(y[0] + g), v256_load(y[1] + g),
                                              v256_load(y[2] + g)};
-                    int32_t* const at[3] = {at0[0] + g, at0[1] + g, at0[2] + g};
-                    int32_t* const column[3] = {perColumn[0] + g, perColumn[1] + g,
-                                                perColumn[2] + g};
-                    int32_t* const row[3] = {perRow[0] + g, perRow[1] + g, perRow[2] + g};
-                    small |= uint32_t(smallEdgesEight(xs, ys, v256_load(firstColumn + g),
-                                                      v256_load(firstRow + g), at, column, row))
-                             << g;
+                    int32_t* const at[3] = {out.at0[0] + g, out.at0[1] + g, out.at0[2] + g};
+                    int32_t* const column[3] = {out.perColumn[0] + g, out.perColumn[1] + g,
+                                                out.perColumn[2] + g};
+                    int32_t* const row[3] = {out.perRow[0] + g, out.perRow[1] + g,
+                                             out.perRow[2] + g};
+                    out.small |= uint32_t(smallEdgesEight(xs, ys, v256_load(out.firstColumn + g),
+                                                          v256_load(out.firstRow + g), at,
+                                                          column, row))
+                                 << g;
                 }
+            };
+            // Walks small face i of `sf` over its rows within [rowFirst, rowLast).
+            auto walkSmall = [&](const SmallFaces& sf, int i, int rowFirst, int rowLast,
+                                 auto& spanFn) {
+                const int begin = std::max(sf.firstRow[i], rowFirst);
+                const int end = std::min(sf.endRow[i], rowLast);
+                if (begin >= end)
+                    return;
+                int32_t faceAt0[3], faceColumn[3], faceRow[3];
+                for (int e = 0; e < 3; e++) {
+                    faceColumn[e] = sf.perColumn[e][i], faceRow[e] = sf.perRow[e][i];
+                    faceAt0[e] = sf.at0[e][i] + faceRow[e] * (begin - sf.firstRow[i]);
+                }
+                const unsigned onCanvas =
+                    (1u << std::min(kSmallColumns, columns - sf.firstColumn[i])) - 1;
+                walkSmallRows<1>(begin, end, sf.firstColumn[i], onCanvas, faceAt0, faceColumn,
+                                 faceRow, spanFn);
+            };
+            /* Draws faces[0 .. count) in face order, each span by paintSpan, for a flat shader:
+            the tiny faces by setUpSmallFaces and walkSmall, the others as prepareBatch and
+            walkTriangle do. Out of line: inlined, it cost the band loop's other paths 2-3%.
+            (Gouraud, whose shader reads the setup, lost 9-18% on the grids this way: its setup
+            and shader in a face's turn, or in a loop over the batch as prepareBatch does.) */
+            auto paintSmallFaces = [&](const int* faces, int count,
+                                       auto& paintSpan) __attribute__((noinline)) {
+                SmallFaces sf;
+                setUpSmallFaces(faces, count, sf);
+                const Vec3i* const corners = sf.corners;
                 const TriangleSetup unread{};  // the shader reads no setup
                 for (int i = 0; i < count; i++) {
                     const int face = faces[i];
                     const double depth = byDepth ? keyOf[face] : 0.0;
-                    if (small >> i & 1) {
-                        if (firstRow[i] >= endRow[i])
+                    if (sf.small >> i & 1) {
+                        if (sf.firstRow[i] >= sf.endRow[i])
                             continue;
                         const Shader shader = shaders.make(unread, nullptr, corners[i], face);
-                        const int32_t faceAt0[3] = {at0[0][i], at0[1][i], at0[2][i]};
-                        const int32_t faceColumn[3] = {perColumn[0][i], perColumn[1][i],
-                                                       perColumn[2][i]};
-                        const int32_t faceRow[3] = {perRow[0][i], perRow[1][i], perRow[2][i]};
+                        const int32_t faceAt0[3] = {sf.at0[0][i], sf.at0[1][i], sf.at0[2][i]};
+                        const int32_t faceColumn[3] = {sf.perColumn[0][i], sf.perColumn[1][i],
+                                                       sf.perColumn[2][i]};
+                        const int32_t faceRow[3] = {sf.perRow[0][i], sf.perRow[1][i],
+                                                    sf.perRow[2][i]};
                         auto span = [&](int row, int xBegin, int xEnd) {
                             paintSpan(unread, shader, depth, row, xBegin, xEnd);
                         };
                         const unsigned onCanvas =
-                            (1u << std::min(kSmallColumns, columns - firstColumn[i])) - 1;
-                        walkSmallRows<1>(firstRow[i], endRow[i], firstColumn[i], onCanvas,
-                                         faceAt0, faceColumn, faceRow, span);
+                            (1u << std::min(kSmallColumns, columns - sf.firstColumn[i])) - 1;
+                        walkSmallRows<1>(sf.firstRow[i], sf.endRow[i], sf.firstColumn[i],
+                                         onCanvas, faceAt0, faceColumn, faceRow, span);
                         continue;
                     }
                     FixedPoint points[3];
@@ -1389,6 +1419,40 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         paintSpan(triangle, shader, depth, row, xBegin, xEnd);
                     });
                 }
+            };
+            /* Draws faces[0 .. count) of a front-to-back band in turn by claimFace, for a flat
+            shader: as paintSmallFaces, with each face's walk handed to claimFace. False, having
+            drawn nothing, where fewer than half of them are tiny: prepareBatch's loops over the
+            batch overlap the bigger faces' reads. */
+            auto claimSmallFaces = [&](const int* faces, int count,
+                                       auto& claimFace) __attribute__((noinline)) {
+                SmallFaces sf;
+                setUpSmallFaces(faces, count, sf);
+                if (2 * __builtin_popcount(sf.small) < count)
+                    return false;
+                const TriangleSetup unread{};  // the shader reads no setup
+                for (int i = 0; i < count; i++) {
+                    const int face = faces[i];
+                    if (sf.small >> i & 1) {
+                        const Shader shader = shaders.make(unread, nullptr, sf.corners[i], face);
+                        claimFace(face, unread, shader, [&](int rowFirst, int rowLast, auto& spanFn) {
+                            walkSmall(sf, i, rowFirst, rowLast, spanFn);
+                        });
+                        continue;
+                    }
+                    FixedPoint points[3];
+                    for (int j = 0; j < 3; j++)
+                        points[j] = snapped[sf.corners[i][j]];
+                    TriangleSetup triangle;
+                    int vertexOrder[3];
+                    if (!setupBoxedTriangle(points, faceBox[face], size, triangle, vertexOrder))
+                        continue;
+                    const Shader shader = shaders.make(triangle, vertexOrder, sf.corners[i], face);
+                    claimFace(face, triangle, shader, [&](int rowFirst, int rowLast, auto& spanFn) {
+                        walkTriangle(triangle, rowFirst, rowLast, columns, spanFn);
+                    });
+                }
+                return true;
             };
 #endif
 
@@ -1598,22 +1662,22 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         batchFaces[count++] = face;
                     }
                 }
-                const int batchSize = prepareBatch(batchFaces, count);
-                for (int i = 0; i < batchSize; i++) {
-                    const BatchFace& bf = batch[i];
+                // Draws a set-up face: its rows that are not final, each span claiming what is
+                // not final yet.
+                auto claimFace = [&](int face, const TriangleSetup& triangle, const Shader& shader,
+                                     auto&& walk) {
                     // Small faces (a box within two mask words and 16 rows) are not tested
                     // again: walking them costs about what the test does, and their claims skip
                     // what is final. A bigger face may be hidden by the batch's earlier faces.
-                    const SampleBox& box = faceBox[bf.face];
+                    const SampleBox& box = faceBox[face];
                     const bool retest = box.colLast - box.colFirst >= 64 ||
                                         box.rowEnd - box.rowBegin > 16;
                     uint64_t rowsToDraw;
                     if (!visibleRows(box, rowsToDraw, retest, std::false_type()))  // hidden now
-                        continue;
+                        return;
                     const int firstRow = y0 + __builtin_ctzll(rowsToDraw);
                     const int lastRow = y0 + 63 - __builtin_clzll(rowsToDraw);
-                    walkTriangle(bf.triangle, firstRow, lastRow + 1, columns,
-                                 [&](int y, int xBegin, int xEnd) {
+                    auto span = [&](int y, int xBegin, int xEnd) {
                         const int r = y - y0;
                         if (!(rowsToDraw >> r & 1))
                             return;
@@ -1621,22 +1685,36 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {
                             if constexpr (Shaders::kZBuffer) {
                                 if (deferred) {  // shaded below, a batch at a time
-                                    bf.shader.keep(bf.triangle, y, a, b, bf.face,
-                                                   keptFaces.data() + size_t(r) * columns,
-                                                   keptWeights.data() + size_t(r) * columns * 2);
+                                    shader.keep(triangle, y, a, b, face,
+                                                keptFaces.data() + size_t(r) * columns,
+                                                keptWeights.data() + size_t(r) * columns * 2);
                                     return;
                                 }
                             }
                             if constexpr (std::is_same<Shader, GouraudShader<T>>::value)
-                                bf.shader.shadeRun(bf.triangle, row, y, xBegin, a, b);
+                                shader.shadeRun(triangle, row, y, xBegin, a, b);
                             else if constexpr (std::is_same<Shader, FlatShader<T>>::value)
-                                bf.shader.template shadeRun<true>(bf.triangle, row, y, xBegin,
-                                                                  a, b);
+                                shader.template shadeRun<true>(triangle, row, y, xBegin, a, b);
                             else
-                                bf.shader(bf.triangle, row, y, xBegin, a, b);
+                                shader(triangle, row, y, xBegin, a, b);
                         });
                         if (rowLeft[r] == 0)
                             fullRows |= uint64_t(1) << r;
+                    };
+                    walk(firstRow, lastRow + 1, span);
+                };
+#if OPENCV_SHADING_BOX_EIGHT
+                if constexpr (std::is_same<Shader, FlatShader<T>>::value) {
+                    if (boxEight && claimSmallFaces(batchFaces, count, claimFace))
+                        continue;
+                }
+#endif
+                const int batchSize = prepareBatch(batchFaces, count);
+                for (int i = 0; i < batchSize; i++) {
+                    const BatchFace& bf = batch[i];
+                    claimFace(bf.face, bf.triangle, bf.shader,
+                              [&](int rowFirst, int rowLast, auto& spanFn) {
+                        walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
                     });
                 }
             }
