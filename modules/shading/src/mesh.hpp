@@ -1320,6 +1320,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 alignas(32) int32_t firstColumn[kBatch], firstRow[kBatch], endRow[kBatch];
                 Vec3i corners[kBatch];
                 uint32_t small;  //!< bit i: face i is set up here
+                alignas(Shader) unsigned char shaderStorage[kBatch * sizeof(Shader)];
+                //! Small face i's shader (built from no setup, which it does not read).
+                const Shader& shader(int i) const
+                {
+                    return reinterpret_cast<const Shader*>(shaderStorage)[i];
+                }
             };
             auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out) {
                 alignas(32) int32_t x[3][kBatch], y[3][kBatch];
@@ -1357,6 +1363,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                                           column, row))
                                  << g;
                 }
+                // Their shaders, in a loop of their own: the colours' loads and divisions of
+                // several faces overlap.
+                const TriangleSetup unread{};
+                for (uint32_t left = out.small; left; left &= left - 1) {
+                    const int i = __builtin_ctz(left);
+                    new (reinterpret_cast<Shader*>(out.shaderStorage) + i)
+                        Shader(shaders.make(unread, nullptr, out.corners[i], faces[i]));
+                }
             };
             // Walks small face i of `sf` over its rows within [rowFirst, rowLast).
             auto walkSmall = [&](const SmallFaces& sf, int i, int rowFirst, int rowLast,
@@ -1392,7 +1406,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     if (sf.small >> i & 1) {
                         if (sf.firstRow[i] >= sf.endRow[i])
                             continue;
-                        const Shader shader = shaders.make(unread, nullptr, corners[i], face);
+                        const Shader& shader = sf.shader(i);
                         const int32_t faceAt0[3] = {sf.at0[0][i], sf.at0[1][i], sf.at0[2][i]};
                         const int32_t faceColumn[3] = {sf.perColumn[0][i], sf.perColumn[1][i],
                                                        sf.perColumn[2][i]};
@@ -1434,8 +1448,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 for (int i = 0; i < count; i++) {
                     const int face = faces[i];
                     if (sf.small >> i & 1) {
-                        const Shader shader = shaders.make(unread, nullptr, sf.corners[i], face);
-                        claimFace(face, unread, shader, [&](int rowFirst, int rowLast, auto& spanFn) {
+                        claimFace(face, unread, sf.shader(i), [&](int rowFirst, int rowLast, auto& spanFn) {
                             walkSmall(sf, i, rowFirst, rowLast, spanFn);
                         });
                         continue;
