@@ -1221,13 +1221,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const double overdraw = bandArea[band] - double(bandY1 - bandY0) * columns;
             const size_t windingMinority =
                 std::min(bandClockwise[band], orderSize - bandClockwise[band]);
-            const bool closedSurface = 4 * windingMinority >= orderSize &&
-                                       bandArea[band] <= kSmallFaceSamples * double(orderSize);
+            const bool smallFaces = bandArea[band] <= kSmallFaceSamples * double(orderSize);
+            const bool closedSurface = 4 * windingMinority >= orderSize && smallFaces;
             const bool littleOverdraw =
                 !depthTested && !options.frontToBack &&
                 overdraw <= kOverdrawPerFacePainted * double(orderSize) && !closedSurface;
-            const bool inFaceOrder =
-                littleOverdraw && bandArea[band] <= kSmallFaceSamples * double(orderSize);
+            const bool inFaceOrder = littleOverdraw && smallFaces;
             const bool backToFront = littleOverdraw && !inFaceOrder;
             if (!part.whole()) {
                 // Part of a band: its own copy of the entries whose boxes reach its rows, as the
@@ -1718,7 +1717,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 };
 #if OPENCV_SHADING_BOX_EIGHT
                 if constexpr (std::is_same<Shader, FlatShader<T>>::value) {
-                    if (boxEight && claimSmallFaces(batchFaces, count, claimFace))
+                    if (boxEight && smallFaces && claimSmallFaces(batchFaces, count, claimFace))
                         continue;
                 }
 #endif
