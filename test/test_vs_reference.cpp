@@ -1000,7 +1000,8 @@ TEST(ShadingVsReference, DrawMeshNeedlesAmongSmallFacesInFaceOrder)
             Point2d p[3];
             if (i % 2 == 0) {  // tall, 0.4 px wide: it reaches columns x and x + 1 at most
                 const double x = rng.uniform(0.0, size.width - 2.0);
-                p[0] = Point2d(x, y - far), p[1] = Point2d(x + 0.4, y), p[2] = Point2d(x + 0.1, y + 3);
+                p[0] = Point2d(x, y - far), p[1] = Point2d(x + 0.4, y);
+                p[2] = Point2d(x + 0.1, y + 3);
             } else {  // 0.1 px tall, from x = -8 10^5 to the first few columns
                 const double x = rng.uniform(0.0, 5.0);
                 p[0] = Point2d(-8 * std::abs(far), y + 0.15), p[1] = Point2d(x, y + 0.25),

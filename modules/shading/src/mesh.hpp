@@ -1371,6 +1371,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         Shader(shaders.make(unread, nullptr, out.corners[i], faces[i]));
                 }
             };
+            // Sets up face i of `sf` that is not small, as prepareBatch does; false: it covers
+            // nothing.
+            auto setUpOther = [&](const SmallFaces& sf, int i, int face, TriangleSetup& triangle,
+                                  int vertexOrder[3]) {
+                FixedPoint points[3];
+                for (int j = 0; j < 3; j++)
+                    points[j] = snapped[sf.corners[i][j]];
+                return setupBoxedTriangle(points, faceBox[face], size, triangle, vertexOrder);
+            };
             // Walks small face i of `sf` over its rows within [rowFirst, rowLast).
             auto walkSmall = [&](const SmallFaces& sf, int i, int rowFirst, int rowLast,
                                  auto& spanFn) {
@@ -1391,8 +1400,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             /* Draws faces[0 .. count) in face order, each span by paintSpan, for a flat shader:
             the tiny faces by setUpSmallFaces and walkSmall, the others as prepareBatch and
             walkTriangle do. Out of line: inlined, it cost the band loop's other paths 2-3%.
-            (Gouraud, whose shader reads the setup, lost 9-18% on the grids this way: its setup
-            and shader in a face's turn, or in a loop over the batch as prepareBatch does.) */
+            (Gouraud, whose shader reads the setup, lost 7-18% on the grids this way, even with
+            only its walks from the 8-face setup: see the performance history.) */
             auto paintSmallFaces = [&](const int* faces, int count,
                                        auto& paintSpan) __attribute__((noinline)) {
                 SmallFaces sf;
@@ -1420,12 +1429,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                          onCanvas, faceAt0, faceColumn, faceRow, span);
                         continue;
                     }
-                    FixedPoint points[3];
-                    for (int j = 0; j < 3; j++)
-                        points[j] = snapped[corners[i][j]];
                     TriangleSetup triangle;
                     int vertexOrder[3];
-                    if (!setupBoxedTriangle(points, faceBox[face], size, triangle, vertexOrder))
+                    if (!setUpOther(sf, i, face, triangle, vertexOrder))
                         continue;
                     const Shader shader = shaders.make(triangle, vertexOrder, corners[i], face);
                     walkTriangle(triangle, y0, y1, columns, [&](int row, int xBegin, int xEnd) {
@@ -1447,17 +1453,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 for (int i = 0; i < count; i++) {
                     const int face = faces[i];
                     if (sf.small >> i & 1) {
-                        claimFace(face, unread, sf.shader(i), [&](int rowFirst, int rowLast, auto& spanFn) {
+                        claimFace(face, unread, sf.shader(i),
+                                  [&](int rowFirst, int rowLast, auto& spanFn) {
                             walkSmall(sf, i, rowFirst, rowLast, spanFn);
                         });
                         continue;
                     }
-                    FixedPoint points[3];
-                    for (int j = 0; j < 3; j++)
-                        points[j] = snapped[sf.corners[i][j]];
                     TriangleSetup triangle;
                     int vertexOrder[3];
-                    if (!setupBoxedTriangle(points, faceBox[face], size, triangle, vertexOrder))
+                    if (!setUpOther(sf, i, face, triangle, vertexOrder))
                         continue;
                     const Shader shader = shaders.make(triangle, vertexOrder, sf.corners[i], face);
                     claimFace(face, triangle, shader, [&](int rowFirst, int rowLast, auto& spanFn) {

@@ -404,11 +404,11 @@ __attribute__((noinline)) void walkWiderSmallRows(int columns, int begin, int en
 
 #if CV_SIMD256
 /** walkSmallTriangle's edge functions of 8 faces at once, for the meshes of tiny faces: the same
-three (at0, perColumn, perRow), bit for bit, in another order, without sorting the vertices. x[j], y[j]: vertex j of
-each face (given order, narrow, so their low words); firstColumn and firstRow: where its walk
-starts (t.smallFirstColumn and the walk's first row). Writes lane i to at0[e][i] etc. Returns
-bit i set where face i has a nonzero area and is small enough for one vector of columns (at most
-kSmallLanes): the others are set up as usual.
+three (at0, perColumn, perRow), bit for bit, in another order, without sorting the vertices.
+x[j], y[j]: vertex j of each face (given order, narrow, so their low words); firstColumn and
+firstRow: where its walk starts (t.smallFirstColumn and the walk's first row). Writes lane i to
+at0[e][i] etc. Returns bit i set where face i has a nonzero area and is small enough for one
+vector of columns (at most kSmallLanes): the others are set up as usual.
 
 Why no sort: with A = (v2 - v0) x (v1 - v0), the edges u -> v in the cyclic order (v0 v1, v1 v2,
 v2 v0) all have F(w) = A at their third vertex w. walkSmallTriangle's s F of edge a -> b (a above
@@ -428,7 +428,8 @@ inline int smallEdgesEight(const v_int32x8 x[3], const v_int32x8 y[3],
         (xMax + v256_setall_s32(int(kSubpixelOne - 1))) >> kSubpixelBits;
     const v_int32x8 fits = (xMax - xMin < limit) & (yMax - yMin < limit) &
                            (columnsEnd - firstColumn <= v256_setall_s32(kSmallLanes));
-    // Within these extents every product below is under 2^26 in magnitude.
+    // Within these extents every product below is under 2^26 in magnitude; the lanes of faces
+    // beyond them may wrap, and are not used.
     const v_int32x8 area = (x[2] - x[0]) * (y[1] - y[0]) - (y[2] - y[0]) * (x[1] - x[0]);
     const v_int32x8 negative = area < zero;  // all ones: v is negated as (v ^ m) - m
     const v_int32x8 positive = area > zero;
