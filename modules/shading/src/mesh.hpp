@@ -1709,9 +1709,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                     return;
                                 }
                             }
-                            if constexpr (std::is_same<Shader, GouraudShader<T>>::value)
-                                shader.shadeRun(triangle, row, y, xBegin, a, b);
-                            else if constexpr (std::is_same<Shader, FlatShader<T>>::value)
+                            if constexpr (std::is_same<Shader, GouraudShader<T>>::value ||
+                                          std::is_same<Shader, FlatShader<T>>::value)
                                 shader.template shadeRun<true>(triangle, row, y, xBegin, a, b);
                             else
                                 shader(triangle, row, y, xBegin, a, b);
