@@ -152,7 +152,8 @@ __attribute__((always_inline)) inline void storeColorGroups(float* p, float* con
 /** Sets pixels [0, n) (n >= 1) of the float RGB run at `first` to `color` (its first three
 lanes), touching nothing outside the run, with no branch for runs of up to four pixels: four
 8 + 4-byte stores at pixels min(j, n - 1), j = 0 .. 3, the last pixel stored again where the run
-is shorter; longer runs by storeColorGroups. For the runs that coverage claims leave
+is shorter; longer runs by storeColorGroups, or from 8 pixels on with AVX2 by 8 pixels in three
+32-byte stores (random2048 1.5% faster). For the runs that coverage claims leave
 (CoverageBits::claim), whose lengths (1 to 8 pixels on the demo mesh) vary from one run to the
 next: a store loop's exit, mispredicted on many of them, cost the demo mesh 4% of its frame in
 flat. Not for the spans of a regular mesh (a grid's), where the loop predicts well and stores
@@ -160,6 +161,27 @@ less. */
 __attribute__((always_inline)) inline void storeColorRun(float* first, int n,
                                                          const v_float32x4& color)
 {
+#if CV_AVX2
+    if (n >= 8) {
+        const __m256i c0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1),
+                      c1 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0),
+                      c2 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
+        const __m256 color8 = _mm256_castps128_ps256(color.val);
+        const v_float32x8 g0(_mm256_permutevar8x32_ps(color8, c0)),
+            g1(_mm256_permutevar8x32_ps(color8, c1)), g2(_mm256_permutevar8x32_ps(color8, c2));
+        float* p = first;
+        float* const last = first + 3 * (n - 8);
+        for (; p < last; p += 24) {
+            v_store(p, g0);
+            v_store(p + 8, g1);
+            v_store(p + 16, g2);
+        }
+        v_store(last, g0);
+        v_store(last + 8, g1);
+        v_store(last + 16, g2);
+        return;
+    }
+#endif
     if (n > 4) {
         storeColorGroups(first, first + 3 * n, color);
         return;
