@@ -39,6 +39,19 @@ inline void storePixel(float* p, const v_float32x4& v)
     p[2] = v_extract_n<2>(v);
 }
 
+#if CV_AVX2
+//! 8 RGB pixels of value v (lanes r, g, b), one after the other, as three 32-byte vectors: lanes
+//! r g b r g b r g, b r g b r g b r and g b r g b r g b.
+__attribute__((always_inline)) inline void eightPixelLanes(const v_float32x4& v, v_float32x8& l0,
+                                                           v_float32x8& l1, v_float32x8& l2)
+{
+    const __m256 v8 = _mm256_castps128_ps256(v.val);
+    l0 = v_float32x8(_mm256_permutevar8x32_ps(v8, _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1)));
+    l1 = v_float32x8(_mm256_permutevar8x32_ps(v8, _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0)));
+    l2 = v_float32x8(_mm256_permutevar8x32_ps(v8, _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2)));
+}
+#endif
+
 //! Claimed runs from this many pixels on are written in groups (storeFloatPixelGroups).
 constexpr int kFloatGroupMinPixels = 8;
 
@@ -53,15 +66,9 @@ __attribute__((always_inline)) inline void storeFloatPixelGroups(float* row, int
     // The groups' lanes hold channels r g b r g b ..., of pixels 0 0 0 1 1 1 ... of the group.
     float* p = row + 3 * xBegin;
 #if CV_AVX2
-    const __m256 base8 = _mm256_castps128_ps256(base.val);
-    const __m256 step8 = _mm256_castps128_ps256(step.val);
-    const __m256i c0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1),
-                  c1 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0),
-                  c2 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-    const v_float32x8 b0(_mm256_permutevar8x32_ps(base8, c0)),
-        b1(_mm256_permutevar8x32_ps(base8, c1)), b2(_mm256_permutevar8x32_ps(base8, c2));
-    const v_float32x8 s0(_mm256_permutevar8x32_ps(step8, c0)),
-        s1(_mm256_permutevar8x32_ps(step8, c1)), s2(_mm256_permutevar8x32_ps(step8, c2));
+    v_float32x8 b0, b1, b2, s0, s1, s2;
+    eightPixelLanes(base, b0, b1, b2);
+    eightPixelLanes(step, s0, s1, s2);
     const v_int32x8 o0(0, 0, 0, 1, 1, 1, 2, 2), o1(2, 3, 3, 3, 4, 4, 4, 5),
         o2(5, 5, 6, 6, 6, 7, 7, 7);
     auto group = [&](float* q, int i) {
@@ -163,12 +170,8 @@ __attribute__((always_inline)) inline void storeColorRun(float* first, int n,
 {
 #if CV_AVX2
     if (n >= 8) {
-        const __m256i c0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1),
-                      c1 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0),
-                      c2 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-        const __m256 color8 = _mm256_castps128_ps256(color.val);
-        const v_float32x8 g0(_mm256_permutevar8x32_ps(color8, c0)),
-            g1(_mm256_permutevar8x32_ps(color8, c1)), g2(_mm256_permutevar8x32_ps(color8, c2));
+        v_float32x8 g0, g1, g2;
+        eightPixelLanes(color, g0, g1, g2);
         float* p = first;
         float* const last = first + 3 * (n - 8);
         for (; p < last; p += 24) {
