@@ -1336,6 +1336,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 alignas(32) int32_t firstColumn[kBatch], firstRow[kBatch], endRow[kBatch];
                 Vec3i corners[kBatch];
                 uint32_t small;  //!< bit i: face i is set up here
+                // Built in place and never destroyed, which a trivial destructor allows.
+                static_assert(std::is_trivially_destructible<Shader>::value, "no destructor runs");
                 alignas(Shader) unsigned char shaderStorage[kBatch * sizeof(Shader)];
                 //! Small face i's shader (built from no setup, which it does not read).
                 const Shader& shader(int i) const
