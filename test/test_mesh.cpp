@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <thread>
@@ -246,6 +247,69 @@ TEST(ShadingMesh, EqualsSequentialPaintersForAnyThreadCount)
         }
     }
     setNumThreads(savedThreads);
+}
+
+// Gouraud sums w0 c0 + w1 c1 + w2 c2 in the vertices' canonical order (top, mid, bottom), so that
+// a face's pixels never depend on the path that draws it. Tiny faces of a mesh are set up eight
+// at a time (AVX2 build); here each is compared with the same face drawn alone, bit for bit, in
+// bands drawn in face order (one winding) and front to back (both windings, as a closed
+// surface's). Colours linear in x or y, zero at a span's first column or along a row, make the
+// sums cancel to rounding noise there, which any other order of the sums changes; axis-aligned
+// cells give vertices of equal y, whose order the sort's tie-break decides. Colours beyond
+// +-1e37 are computed per pixel, never stepped in float, which could overflow.
+TEST(ShadingMesh, TinyGouraudFacesEqualFacesDrawnAlone)
+{
+    const Size size(61, 47);
+    std::vector<Point2d> verts;
+    const int n = 20, m = 16;  // cells of 3 x 3 pixels, corners a quarter pixel off the samples
+    RNG rng(11);
+    for (int j = 0; j <= m; j++)
+        for (int i = 0; i <= n; i++) {
+            // From row 12 on, corners moved up or down a little, on the 1/256 grid (so that
+            // the colours below are exactly linear in the snapped vertices).
+            const double dy = 3 * j > 12 ? rng.uniform(-100, 101) / 256.0 : 0.0;
+            verts.push_back(Point2d(3 * i - 0.75, 3 * j - 0.75 + dy));
+        }
+    for (bool bothWindings : {false, true}) {
+        std::vector<Vec3i> faces;
+        for (int j = 0; j < m; j++)
+            for (int i = 0; i < n; i++) {
+                const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+                // Both diagonals, and each face's vertices given in a random rotation.
+                Vec3i f0(a, b, d), f1(a, d, c);
+                if (rng.uniform(0, 2))
+                    f0 = Vec3i(a, b, c), f1 = Vec3i(b, d, c);
+                for (Vec3i f : {f0, f1}) {
+                    const int r = rng.uniform(0, 3);
+                    faces.push_back(Vec3i(f[r], f[(r + 1) % 3], f[(r + 2) % 3]));
+                    if (bothWindings && rng.uniform(0, 2))
+                        std::swap(faces.back()[1], faces.back()[2]);
+                }
+            }
+        for (bool huge : {false, true}) {
+            std::vector<Vec3d> colors;
+            // Zero at columns 9 and 21, where spans start, and along row 20, where the steps
+            // along x (zero but for rounding, where no edge is horizontal) and the spans' first
+            // values cancel; or up to 3e38.
+            for (const Point2d& v : verts)
+                colors.push_back(huge ? Vec3d(1e37 * (v.x - 30), -3e38 * (2 * (int(v.x) % 2) - 1),
+                                              1e36 * v.y)
+                                      : Vec3d(1e6 * (v.x - 9), -3e5 * (v.x - 21),
+                                              7e4 * (v.y - 20)));
+            Mat expected(size, CV_32FC3, Scalar::all(0));
+            for (const Vec3i& f : faces) {
+                const std::vector<Point2d> v = {verts[f[0]], verts[f[1]], verts[f[2]]};
+                const std::vector<Vec3d> c = {colors[f[0]], colors[f[1]], colors[f[2]]};
+                shading::gouraud(expected, v, c);
+            }
+            Mat canvas(size, CV_32FC3, Scalar::all(0));
+            shading::drawMesh(canvas, verts, faces, colors, noArray(), shading::SHADE_GOURAUD);
+            EXPECT_EQ(std::memcmp(canvas.data, expected.data,
+                                  canvas.total() * canvas.elemSize()),
+                      0)
+                << "both windings " << bothWindings << ", huge colours " << huge;
+        }
+    }
 }
 
 TEST(ShadingMesh, DrawMeshIntoRoiTouchesOnlyTheRoi)

@@ -22,6 +22,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -1328,24 +1329,32 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             };
             int batchFaces[kBatch];
 #if OPENCV_SHADING_BOX_EIGHT
-            /* The tiny faces of a batch, for a shader that does not read the triangle's setup
-            (flat): their edge functions set up 8 at a time (smallEdgesEight), to be walked by
-            walkSmallRows (walkSmall); the others are set up as prepareBatch does. */
+            /* The tiny faces of a batch, for flat and Gouraud shaders: their edge functions set up
+            8 at a time (smallEdgesEight), to be walked by walkSmallRows (walkSmall), and their
+            shaders built without a TriangleSetup (Gouraud's from smallWeightsEight, where every
+            colour is in its range); the others are set up as prepareBatch does. */
+            constexpr bool kSmallGouraud = std::is_same<Shader, GouraudShader<T>>::value;
+            using SmallShader =
+                std::conditional_t<kSmallGouraud, SmallGouraudShader<T>, Shader>;
             struct SmallFaces {
                 alignas(32) int32_t at0[3][kBatch], perColumn[3][kBatch], perRow[3][kBatch];
                 alignas(32) int32_t firstColumn[kBatch], firstRow[kBatch], endRow[kBatch];
                 Vec3i corners[kBatch];
                 uint32_t small;  //!< bit i: face i is set up here
                 // Built in place and never destroyed, which a trivial destructor allows.
-                static_assert(std::is_trivially_destructible<Shader>::value, "no destructor runs");
-                alignas(Shader) unsigned char shaderStorage[kBatch * sizeof(Shader)];
-                //! Small face i's shader (built from no setup, which it does not read).
-                const Shader& shader(int i) const
+                static_assert(std::is_trivially_destructible<SmallShader>::value,
+                              "no destructor runs");
+                alignas(SmallShader) unsigned char shaderStorage[kBatch * sizeof(SmallShader)];
+                //! Small face i's shader.
+                const SmallShader& shader(int i) const
                 {
-                    return reinterpret_cast<const Shader*>(shaderStorage)[i];
+                    return reinterpret_cast<const SmallShader*>(shaderStorage)[i];
                 }
             };
-            auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out) {
+            // With mostTiny: false, having set up no shader, where fewer than half of the faces
+            // are tiny (see claimSmallFaces).
+            auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out,
+                                       bool mostTiny) {
                 alignas(32) int32_t x[3][kBatch], y[3][kBatch];
                 for (int i = 0; i < count; i++) {
                     out.corners[i] = faceAt[faces[i]];
@@ -1381,14 +1390,54 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                                           column, row))
                                  << g;
                 }
+                if (mostTiny && 2 * __builtin_popcount(out.small) < count)
+                    return false;
+                // Gouraud's canonical vertices, weights' edges and 1 / twice the area.
+                [[maybe_unused]] alignas(32) int32_t vertex[3][kBatch], weightAt[3][kBatch],
+                    weightPerColumn[3][kBatch], weightPerRow[3][kBatch];
+                [[maybe_unused]] alignas(32) double invArea2[kBatch];
+                if constexpr (kSmallGouraud) {
+                    for (int g = 0; g < lanes; g += 8) {
+                        const v_int32x8 xs[3] = {v256_load(x[0] + g), v256_load(x[1] + g),
+                                                 v256_load(x[2] + g)};
+                        const v_int32x8 ys[3] = {v256_load(y[0] + g), v256_load(y[1] + g),
+                                                 v256_load(y[2] + g)};
+                        auto lanesOf = [&](int32_t (&a)[3][kBatch]) {
+                            return std::array<int32_t*, 3>{a[0] + g, a[1] + g, a[2] + g};
+                        };
+                        smallWeightsEight(xs, ys, v256_load(out.firstColumn + g),
+                                          v256_load(out.firstRow + g), lanesOf(vertex).data(),
+                                          lanesOf(weightAt).data(), lanesOf(weightPerColumn).data(),
+                                          lanesOf(weightPerRow).data(), invArea2 + g);
+                    }
+                }
                 // Their shaders, in a loop of their own: the colours' loads and divisions of
                 // several faces overlap.
-                const TriangleSetup unread{};
                 for (uint32_t left = out.small; left; left &= left - 1) {
                     const int i = __builtin_ctz(left);
-                    new (reinterpret_cast<Shader*>(out.shaderStorage) + i)
-                        Shader(shaders.make(unread, nullptr, out.corners[i], faces[i]));
+                    SmallShader* const shader =
+                        reinterpret_cast<SmallShader*>(out.shaderStorage) + i;
+                    if constexpr (kSmallGouraud) {
+                        const Vec3i& f = out.corners[i];
+                        const Vec3d* const c[3] = {&shaders.colors[f[vertex[0][i]]],
+                                                   &shaders.colors[f[vertex[1][i]]],
+                                                   &shaders.colors[f[vertex[2][i]]]};
+                        const int32_t edgeAt[3] = {weightAt[0][i], weightAt[1][i],
+                                                   weightAt[2][i]};
+                        const int32_t perColumn[3] = {weightPerColumn[0][i],
+                                                      weightPerColumn[1][i],
+                                                      weightPerColumn[2][i]};
+                        const int32_t perRow[3] = {weightPerRow[0][i], weightPerRow[1][i],
+                                                   weightPerRow[2][i]};
+                        new (shader) SmallShader(c, invArea2[i], edgeAt, perColumn, perRow,
+                                                 out.firstColumn[i], out.firstRow[i]);
+                    } else {
+                        const TriangleSetup unread{};  // flat reads no setup
+                        new (shader) SmallShader(shaders.make(unread, nullptr, out.corners[i],
+                                                              faces[i]));
+                    }
                 }
+                return true;
             };
             // Sets up face i of `sf` that is not small, as prepareBatch does; false: it covers
             // nothing.
@@ -1424,7 +1473,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             auto paintSmallFaces = [&](const int* faces, int count,
                                        auto& paintSpan) __attribute__((noinline)) {
                 SmallFaces sf;
-                setUpSmallFaces(faces, count, sf);
+                setUpSmallFaces(faces, count, sf, false);
                 const Vec3i* const corners = sf.corners;
                 const TriangleSetup unread{};  // the shader reads no setup
                 for (int i = 0; i < count; i++) {
@@ -1435,7 +1484,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         // never needs (biggrid2048 1.011-1.021 through walkSmall).
                         if (sf.firstRow[i] >= sf.endRow[i])
                             continue;
-                        const Shader& shader = sf.shader(i);
+                        const SmallShader& shader = sf.shader(i);
                         const int32_t faceAt0[3] = {sf.at0[0][i], sf.at0[1][i], sf.at0[2][i]};
                         const int32_t faceColumn[3] = {sf.perColumn[0][i], sf.perColumn[1][i],
                                                        sf.perColumn[2][i]};
@@ -1467,27 +1516,37 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             auto claimSmallFaces = [&](const int* faces, int count,
                                        auto& claimFace) __attribute__((noinline)) {
                 SmallFaces sf;
-                setUpSmallFaces(faces, count, sf);
-                if (2 * __builtin_popcount(sf.small) < count)
+                if (!setUpSmallFaces(faces, count, sf, true))
                     return false;
+                // The others first, each into its batch slot, in a loop of their own: their
+                // setups and colours' loads overlap, as in prepareBatch.
+                uint32_t others = 0;  // bit i: face i is set up in batch[i]
+                for (uint32_t left = ~sf.small & uint32_t(rowsBelow(count)); left;
+                     left &= left - 1) {
+                    const int i = __builtin_ctz(left);
+                    TriangleSetup triangle;
+                    int vertexOrder[3];
+                    if (!setUpOther(sf, i, faces[i], triangle, vertexOrder))
+                        continue;
+                    new (&batch[i]) BatchFace{
+                        triangle, shaders.make(triangle, vertexOrder, sf.corners[i], faces[i]),
+                        faces[i]};
+                    others |= 1u << i;
+                }
                 const TriangleSetup unread{};  // the shader reads no setup
                 for (int i = 0; i < count; i++) {
-                    const int face = faces[i];
                     if (sf.small >> i & 1) {
-                        claimFace(face, unread, sf.shader(i),
+                        claimFace(faces[i], unread, sf.shader(i),
                                   [&](int rowFirst, int rowLast, auto& spanFn) {
                             walkSmall(sf, i, rowFirst, rowLast, spanFn);
                         });
-                        continue;
+                    } else if (others >> i & 1) {
+                        const BatchFace& bf = batch[i];
+                        claimFace(bf.face, bf.triangle, bf.shader,
+                                  [&](int rowFirst, int rowLast, auto& spanFn) {
+                            walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
+                        });
                     }
-                    TriangleSetup triangle;
-                    int vertexOrder[3];
-                    if (!setUpOther(sf, i, face, triangle, vertexOrder))
-                        continue;
-                    const Shader shader = shaders.make(triangle, vertexOrder, sf.corners[i], face);
-                    claimFace(face, triangle, shader, [&](int rowFirst, int rowLast, auto& spanFn) {
-                        walkTriangle(triangle, rowFirst, rowLast, columns, spanFn);
-                    });
                 }
                 return true;
             };
@@ -1566,7 +1625,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     std::fill(bandDepths.begin(), bandDepths.end(), inf);
                 }
                 // A face's span: the samples that take it (all of them without depths).
-                auto paintSpan = [&](const TriangleSetup& t, const Shader& shader, double depth,
+                auto paintSpan = [&](const TriangleSetup& t, const auto& shader, double depth,
                                      int y, int xBegin, int xEnd) {
                     T* row = reinterpret_cast<T*>(pixels + size_t(y) * rowStep);
                     if (!byDepth) {  // face order is the painter's
@@ -1583,8 +1642,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     for (; next > 0 && count < kBatch; next--)
                         batchFaces[count++] = entryFace(order[next - 1]);
 #if OPENCV_SHADING_BOX_EIGHT
-                    if constexpr (std::is_same<Shader, FlatShader<T>>::value) {
-                        if (boxEight) {
+                    if constexpr (std::is_same<Shader, FlatShader<T>>::value || kSmallGouraud) {
+                        if (boxEight && (!kSmallGouraud || shaders.colorsInRange)) {
                             paintSmallFaces(batchFaces, count, paintSpan);
                             continue;
                         }
@@ -1701,7 +1760,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 }
                 // Draws a set-up face: its rows that are not final, each span claiming what is
                 // not final yet.
-                auto claimFace = [&](int face, const TriangleSetup& triangle, const Shader& shader,
+                auto claimFace = [&](int face, const TriangleSetup& triangle, const auto& shader,
                                      auto&& walk) {
                     // Small faces (a box within two mask words and 16 rows) are not tested
                     // again: walking them costs about what the test does, and their claims skip
@@ -1740,8 +1799,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     walk(firstRow, lastRow + 1, span);
                 };
 #if OPENCV_SHADING_BOX_EIGHT
-                if constexpr (std::is_same<Shader, FlatShader<T>>::value) {
-                    if (boxEight && smallFaces && claimSmallFaces(batchFaces, count, claimFace))
+                if constexpr (std::is_same<Shader, FlatShader<T>>::value || kSmallGouraud) {
+                    if (boxEight && smallFaces && (!kSmallGouraud || shaders.colorsInRange) &&
+                        claimSmallFaces(batchFaces, count, claimFace))
                         continue;
                 }
 #endif

@@ -449,6 +449,45 @@ inline int smallEdgesEight(const v_int32x8 x[3], const v_int32x8 y[3],
     }
     return v_signmask(v_reinterpret_as_f32(fits & (negative | positive)));
 }
+
+/** ExactWeights' integers for 8 small faces at once (those smallEdgesEight reports small, whose
+extents keep every value below 2^26; the other lanes are not meaningful): the vertices in the
+canonical order (top, mid, bottom, sorted as setupTriangle sorts them) as indices 0-2 into the
+given order (vertex[i]); edge function i, opposite canonical vertex i, at the sample
+(firstColumn, firstRow) and its steps per column and per row; and 1 / twice the signed area,
+the same division of the same integer (invArea2, 8 doubles). */
+inline void smallWeightsEight(const v_int32x8 x[3], const v_int32x8 y[3],
+                              const v_int32x8& firstColumn, const v_int32x8& firstRow,
+                              int32_t* const vertex[3], int32_t* const at0[3],
+                              int32_t* const perColumn[3], int32_t* const perRow[3],
+                              double* invArea2)
+{
+    v_int32x8 px[3] = {x[0], x[1], x[2]}, py[3] = {y[0], y[1], y[2]};
+    v_int32x8 index[3] = {v256_setall_s32(0), v256_setall_s32(1), v256_setall_s32(2)};
+    auto sortPair = [&](int i, int j) {  // setupTriangle's: j first where it is above i
+        const v_int32x8 swap = (py[j] < py[i]) | ((py[j] == py[i]) & (px[j] < px[i]));
+        const v_int32x8 xi = px[i], yi = py[i], vi = index[i];
+        px[i] = v_select(swap, px[j], xi), px[j] = v_select(swap, xi, px[j]);
+        py[i] = v_select(swap, py[j], yi), py[j] = v_select(swap, yi, py[j]);
+        index[i] = v_select(swap, index[j], vi), index[j] = v_select(swap, vi, index[j]);
+    };
+    sortPair(0, 1);
+    sortPair(1, 2);
+    sortPair(0, 1);
+    const v_int32x8 ox = firstColumn << kSubpixelBits, oy = firstRow << kSubpixelBits;
+    for (int i = 0; i < 3; i++) {
+        const v_int32x8 &ax = px[(i + 1) % 3], &ay = py[(i + 1) % 3];
+        const v_int32x8 dx = px[(i + 2) % 3] - ax, dy = py[(i + 2) % 3] - ay;
+        v_store(vertex[i], index[i]);
+        v_store(at0[i], dx * (oy - ay) - dy * (ox - ax));
+        v_store(perColumn[i], v256_setzero_s32() - (dy << kSubpixelBits));
+        v_store(perRow[i], dx << kSubpixelBits);
+    }
+    const v_int32x8 area2 = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+    const v_float64x4 one = v256_setall_f64(1.0);
+    v_store(invArea2, one / v_cvt_f64(area2));
+    v_store(invArea2 + 4, one / v_cvt_f64_high(area2));
+}
 #endif
 
 /** walkTriangle for a small triangle (t.smallFirstColumn >= 0) over rows [begin, end): the

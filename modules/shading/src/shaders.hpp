@@ -362,6 +362,49 @@ inline bool gouraudInRange(double v)
     return std::abs(v) <= 1e37;
 }
 
+/** Writes Gouraud run [xBegin, xEnd) of the span that starts at spanBegin: channel k of pixel x
+is base[k] + stepX[k] * float(x - spanBegin), base[k] = float(w0 * color[0][k] + w1 * color[1][k]
++ w2 * color[2][k]) from the exact weights (w0, w1, w2) of the span's first sample. Shared by
+GouraudShader and SmallGouraudShader, so that the two give the same pixels. */
+template <typename T, bool kClaimedRun>
+__attribute__((always_inline)) inline void storeGouraudRun(const double color[3][3],
+                                                           const float stepX[4], double w0,
+                                                           double w1, double w2, T* row,
+                                                           int spanBegin, int xBegin, int xEnd)
+{
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+    if constexpr (std::is_same<T, float>::value) {
+        // The scalar sums below, two channels per lane pair, in the same order.
+        const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
+        const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) +
+                               c * v_load(color[2]);
+        const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
+                               c * v_setall_f64(color[2][2]);
+        storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd, v_cvt_f32(lo, hi),
+                                      v_load(stepX));
+        return;
+    }
+#endif
+    float base[3];
+    for (int k = 0; k < 3; k++)
+        base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
+    if constexpr (std::is_same<T, float>::value) {
+#if OPENCV_SHADING_SIMD128
+        const v_float32x4 baseV(base[0], base[1], base[2], base[0]);
+        storeFloatPixels(row, spanBegin, xBegin, xEnd, baseV, v_load(stepX));
+#else
+        storeFloatPixels(row, spanBegin, xBegin, xEnd, base, stepX);
+#endif
+        return;
+    }
+    for (int x = xBegin; x < xEnd; x++) {
+        const float i = float(x - spanBegin);
+        row[3 * x] = toChannel<T>(base[0] + stepX[0] * i);
+        row[3 * x + 1] = toChannel<T>(base[1] + stepX[1] * i);
+        row[3 * x + 2] = toChannel<T>(base[2] + stepX[2] * i);
+    }
+}
+
 /** Gouraud shading: the affine function of (x, y) through the three (snapped) vertices and their
 colours, which is what interpolating along the edges and then along the span gives.
 
@@ -439,37 +482,61 @@ struct GouraudShader {
         }
         double w0, w1, w2;
         weightsAt(t, spanBegin, y, w0, w1, w2);
-#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
-        if constexpr (std::is_same<T, float>::value) {
-            // The scalar sums below, two channels per lane pair, in the same order.
-            const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
-            const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) +
-                                   c * v_load(color[2]);
-            const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
-                                   c * v_setall_f64(color[2][2]);
-            storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd, v_cvt_f32(lo, hi),
-                                          v_load(stepX));
-            return;
+        storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
+    }
+};
+
+/** GouraudShader for a small face (kSmallColumns) set up with others in SIMD lanes
+(smallWeightsEight in raster.hpp), with no TriangleSetup: the same pixels, from the same exact
+integers. Edge function i (opposite canonical vertex i) is kept at the face's origin sample and
+stepped per column and row in 32 bits, which a small face's samples never leave; colours out of
+GouraudShader's float range are not for this shader. */
+template <typename T>
+struct SmallGouraudShader {
+    double color[3][3];  //!< color[vertex][channel], vertices in canonical order
+    float stepX[4];      //!< as GouraudShader's
+    double invArea2;     //!< 1 / twice the signed area, canonical order
+    int32_t edgeAt[3], edgePerColumn[3], edgePerRow[3];  //!< at (originColumn, originRow)
+    int originColumn, originRow;
+
+    /** c: the vertices' colours in canonical order; the edges as smallWeightsEight gives them,
+    for a face whose colours are all within +-1e37 (gouraudInRange). */
+    SmallGouraudShader(const Vec3d* const c[3], double inverseArea2, const int32_t at[3],
+                       const int32_t perColumn[3], const int32_t perRow[3], int column, int row)
+        : invArea2(inverseArea2), originColumn(column), originRow(row)
+    {
+        double dw[3];  // ExactWeights::stepX: -dy * 256 is the exact step per column
+        for (int i = 0; i < 3; i++) {
+            edgeAt[i] = at[i], edgePerColumn[i] = perColumn[i], edgePerRow[i] = perRow[i];
+            dw[i] = double(perColumn[i]) * invArea2;
+            for (int k = 0; k < 3; k++)
+                color[i][k] = (*c[i])[k];
         }
-#endif
-        float base[3];
+        const double maxStep = std::numeric_limits<float>::max();
         for (int k = 0; k < 3; k++)
-            base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
-        if constexpr (std::is_same<T, float>::value) {
-#if OPENCV_SHADING_SIMD128
-            const v_float32x4 baseV(base[0], base[1], base[2], base[0]);
-            storeFloatPixels(row, spanBegin, xBegin, xEnd, baseV, v_load(stepX));
-#else
-            storeFloatPixels(row, spanBegin, xBegin, xEnd, base, stepX);
-#endif
-            return;
-        }
-        for (int x = xBegin; x < xEnd; x++) {
-            const float i = float(x - spanBegin);
-            row[3 * x] = toChannel<T>(base[0] + stepX[0] * i);
-            row[3 * x + 1] = toChannel<T>(base[1] + stepX[1] * i);
-            row[3 * x + 2] = toChannel<T>(base[2] + stepX[2] * i);
-        }
+            stepX[k] = float(std::clamp(dw[0] * color[0][k] + dw[1] * color[1][k] +
+                                        dw[2] * color[2][k], -maxStep, maxStep));
+        stepX[3] = stepX[0];
+    }
+
+    void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
+                    int xEnd) const
+    {
+        shadeRun(t, row, y, spanBegin, xBegin, xEnd);
+    }
+
+    template <bool kClaimedRun = false>
+    __attribute__((always_inline)) void shadeRun(const TriangleSetup&, T* row, int y,
+                                                 int spanBegin, int xBegin, int xEnd) const
+    {
+        const int dx = spanBegin - originColumn, dy = y - originRow;
+        const double w0 = double(edgeAt[0] + edgePerColumn[0] * dx + edgePerRow[0] * dy) *
+                          invArea2;
+        const double w1 = double(edgeAt[1] + edgePerColumn[1] * dx + edgePerRow[1] * dy) *
+                          invArea2;
+        const double w2 = double(edgeAt[2] + edgePerColumn[2] * dx + edgePerRow[2] * dy) *
+                          invArea2;
+        storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
     }
 };
 
