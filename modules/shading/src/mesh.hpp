@@ -989,7 +989,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             static_assert(sizeof(FixedPoint) == 16, "four 32-bit words, x's low one first");
             const v_int32x8 laneBit(1, 2, 4, 8, 16, 32, 64, 128);
             const v_int32x8 roundUp = v256_setall_s32(int(kSubpixelOne - 1));
-            const v_int32x8 zero = v256_setzero_s32();
+            const v_int32x8 zero = v256_setzero_s32(), one = v256_setall_s32(1);
             const v_int32x8 widthFixed = v256_setall_s32(int(canvasSize.width * kSubpixelOne));
             const v_int32x8 width = v256_setall_s32(canvasSize.width);
             const v_int32x8 height = v256_setall_s32(canvasSize.height);
@@ -1050,11 +1050,26 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     continue;
                 // The area as boxFace computes it, from the same exact differences.
                 const v_int32x8 dx1 = x1 - x0, dy2 = y2 - y0, dx2 = x2 - x0, dy1 = y1 - y0;
+                const v_float64x4 areaLow = (v_cvt_f64(dx1) * v_cvt_f64(dy2) -
+                                             v_cvt_f64(dx2) * v_cvt_f64(dy1)) * toPixels;
+                const v_float64x4 areaHigh = (v_cvt_f64_high(dx1) * v_cvt_f64_high(dy2) -
+                                              v_cvt_f64_high(dx2) * v_cvt_f64_high(dy1)) *
+                                             toPixels;
+                // All eight within the band of the faces before them (a mesh's neighbours
+                // mostly are): countFace's sums, added in a tree (they only estimate costs).
+                const v_int32x8 inRun = v256_setall_s32(runBand);
+                if (drawn == 0xff && v_check_all(((rowBegin >> shift) == inRun) &
+                                                 (((rowEnd - one) >> shift) == inRun))) {
+                    const v_float64x4 zeroArea = v256_setzero_f64();
+                    const int clockwise = v_signmask(areaLow > zeroArea) |
+                                          v_signmask(areaHigh > zeroArea) << 4;
+                    runCount += 8 + (uint64_t(__builtin_popcount(clockwise)) << 32);
+                    runArea += v_reduce_sum(v_abs(areaLow) + v_abs(areaHigh));
+                    continue;
+                }
                 double signedArea[8];
-                v_store(signedArea, (v_cvt_f64(dx1) * v_cvt_f64(dy2) -
-                                     v_cvt_f64(dx2) * v_cvt_f64(dy1)) * toPixels);
-                v_store(signedArea + 4, (v_cvt_f64_high(dx1) * v_cvt_f64_high(dy2) -
-                                         v_cvt_f64_high(dx2) * v_cvt_f64_high(dy1)) * toPixels);
+                v_store(signedArea, areaLow);
+                v_store(signedArea + 4, areaHigh);
                 for (int j = 0; j < 8; j++)
                     if (drawn >> j & 1)
                         countFace(faceBox[i + j], signedArea[j]);
