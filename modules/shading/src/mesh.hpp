@@ -1366,8 +1366,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     return reinterpret_cast<const SmallShader*>(shaderStorage)[i];
                 }
             };
-            // With mostTiny: false, having set up no shader, where fewer than half of the faces
-            // are tiny (see claimSmallFaces).
+            // With mostTiny: returns false, having built no shader, where fewer than half of the
+            // faces are tiny (see claimSmallFaces).
             auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out,
                                        bool mostTiny) {
                 alignas(32) int32_t x[3][kBatch], y[3][kBatch];
@@ -1422,7 +1422,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         };
                         smallWeightsEight(xs, ys, v256_load(out.firstColumn + g),
                                           v256_load(out.firstRow + g), lanesOf(vertex).data(),
-                                          lanesOf(weightAt).data(), lanesOf(weightPerColumn).data(),
+                                          lanesOf(weightAt).data(),
+                                          lanesOf(weightPerColumn).data(),
                                           lanesOf(weightPerRow).data(), invArea2 + g);
                     }
                 }
@@ -1480,11 +1481,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 walkSmallRows<1>(begin, end, sf.firstColumn[i], onCanvas, faceAt0, faceColumn,
                                  faceRow, spanFn);
             };
-            /* Draws faces[0 .. count) in face order, each span by paintSpan, for a flat shader:
-            the tiny faces by setUpSmallFaces and walkSmall, the others as prepareBatch and
-            walkTriangle do. Out of line: inlined, it cost the band loop's other paths 2-3%.
-            (Gouraud, whose shader reads the setup, lost 7-18% on the grids this way, even with
-            only its walks from the 8-face setup: see the performance history.) */
+            /* Draws faces[0 .. count) in face order, each span by paintSpan, for a flat or
+            Gouraud shader: the tiny faces by setUpSmallFaces and walkSmall, the others as
+            prepareBatch and walkTriangle do. Out of line: inlined, it cost the band loop's other
+            paths 2-3%. (Gouraud's tiny faces lost 7-18% on the grids here while they kept the
+            one-face setup for their shaders; with smallWeightsEight they gain 20%.) */
             auto paintSmallFaces = [&](const int* faces, int count,
                                        auto& paintSpan) __attribute__((noinline)) {
                 SmallFaces sf;
@@ -1524,10 +1525,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     });
                 }
             };
-            /* Draws faces[0 .. count) of a front-to-back band in turn by claimFace, for a flat
-            shader: as paintSmallFaces, with each face's walk handed to claimFace. False, having
-            drawn nothing, where fewer than half of them are tiny: prepareBatch's loops over the
-            batch overlap the bigger faces' reads. */
+            /* Draws faces[0 .. count) of a front-to-back band in turn by claimFace, for a flat or
+            Gouraud shader: as paintSmallFaces, with each face's walk handed to claimFace. False,
+            having drawn nothing, where fewer than half of them are tiny: prepareBatch's loops
+            over the batch overlap the bigger faces' reads. */
             auto claimSmallFaces = [&](const int* faces, int count,
                                        auto& claimFace) __attribute__((noinline)) {
                 SmallFaces sf;
