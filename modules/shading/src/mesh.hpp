@@ -514,10 +514,22 @@ struct BandWorkspace {
     }
 };
 
+//! The background as the canvas's pixel type, in `storage`; null without one.
+template <typename T>
+inline const Vec<T, 3>* backgroundAs(const Scalar* background, Vec<T, 3>& storage)
+{
+    if (!background)
+        return nullptr;
+    for (int k = 0; k < 3; k++)
+        storage[k] = saturate_cast<T>((*background)[k]);
+    return &storage;
+}
+
 /** The span shaders of the 2D functions: built from the colours of a face's vertices. */
 template <class ShaderType>
 struct VertexColorShaders {
     using Shader = ShaderType;
+    using SmallShader = typename Shader::Small;
     static constexpr bool kZBuffer = false;  //!< no depth-tested drawing (see ZBufferBlocks)
     //! No colours computed per set-up face (see SurfaceShaders::lightFaces).
     static constexpr bool kLightsFaces = false;
@@ -534,6 +546,19 @@ struct VertexColorShaders {
     {
         const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
         return Shader(t, order, c, colorsInRange);
+    }
+
+    //! Small faces' shaders give Shader's values for every face: Gouraud's where every colour
+    //! is in range (they never shade per pixel).
+    bool smallShadersFit() const { return !Shader::kReadsWeights || colorsInRange; }
+
+    //! make() for a small face set up with others (setUpSmallFaces), for shaders that read
+    //! their weights.
+    SmallShader makeSmall(const SmallWeights& w, const int* order, const Vec3i& f,
+                          int /*face*/) const
+    {
+        const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
+        return SmallShader(w, order, c);
     }
 };
 
@@ -1344,17 +1369,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             };
             int batchFaces[kBatch];
 #if OPENCV_SHADING_BOX_EIGHT
-            /* The tiny faces of a batch, for flat and Gouraud shaders: their edge functions set up
-            8 at a time (smallEdgesEight), to be walked by walkSmallRows (walkSmall), and their
-            shaders built without a TriangleSetup (Gouraud's from smallWeightsEight, where every
-            colour is in its range); the others are set up as prepareBatch does. */
-            constexpr bool kSmallGouraud = std::is_same<Shader, GouraudShader<T>>::value;
-            using SmallShader =
-                std::conditional_t<kSmallGouraud, SmallGouraudShader<T>, Shader>;
+            /* The tiny faces of a batch: their edge functions set up 8 at a time
+            (smallEdgesEight), to be walked by walkSmallRows (walkSmall), and their shaders
+            (Shaders::SmallShader) built without a TriangleSetup, from weights set up 8 at a time
+            too (smallWeightsEight) where they read any; the others are set up as prepareBatch
+            does. Only where shaders.smallShadersFit(). */
+            using SmallShader = typename Shaders::SmallShader;
             struct SmallFaces {
                 alignas(32) int32_t at0[3][kBatch], perColumn[3][kBatch], perRow[3][kBatch];
                 alignas(32) int32_t firstColumn[kBatch], firstRow[kBatch], endRow[kBatch];
                 Vec3i corners[kBatch];
+                //! Shaders::kLightsFaces: every face's colour, lit together (lightFaces).
+                float litColor[Shaders::kLightsFaces ? kBatch : 1][3];
                 uint32_t small;  //!< bit i: face i is set up here
                 // Built in place and never destroyed, which a trivial destructor allows.
                 static_assert(std::is_trivially_destructible<SmallShader>::value,
@@ -1365,9 +1391,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 {
                     return reinterpret_cast<const SmallShader*>(shaderStorage)[i];
                 }
+                //! Face i's colour from lightFaces, or null.
+                const float* lit(int i) const
+                {
+                    return Shaders::kLightsFaces ? litColor[i] : nullptr;
+                }
             };
             // With mostTiny: returns false, having built no shader, where fewer than half of the
-            // faces are tiny (see claimSmallFaces).
+            // faces are tiny (see drawSmallFaces).
             auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out,
                                        bool mostTiny) {
                 alignas(32) int32_t x[3][kBatch], y[3][kBatch];
@@ -1407,11 +1438,13 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 }
                 if (mostTiny && 2 * __builtin_popcount(out.small) < count)
                     return false;
-                // Gouraud's canonical vertices, weights' edges and 1 / twice the area.
+                if constexpr (Shaders::kLightsFaces)  // all of them: the others' too
+                    shaders.lightFaces(faces, count, out.litColor);
+                // The canonical vertices, weights' edges and 1 / twice the area.
                 [[maybe_unused]] alignas(32) int32_t vertex[3][kBatch], weightAt[3][kBatch],
                     weightPerColumn[3][kBatch], weightPerRow[3][kBatch];
                 [[maybe_unused]] alignas(32) double invArea2[kBatch];
-                if constexpr (kSmallGouraud) {
+                if constexpr (SmallShader::kReadsWeights) {
                     for (int g = 0; g < lanes; g += 8) {
                         const v_int32x8 xs[3] = {v256_load(x[0] + g), v256_load(x[1] + g),
                                                  v256_load(x[2] + g)};
@@ -1427,26 +1460,27 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                           lanesOf(weightPerRow).data(), invArea2 + g);
                     }
                 }
-                // Their shaders, in a loop of their own: the colours' loads and divisions of
+                // Their shaders, in a loop of their own: the vertices' loads and divisions of
                 // several faces overlap.
                 for (uint32_t left = out.small; left; left &= left - 1) {
                     const int i = __builtin_ctz(left);
                     SmallShader* const shader =
                         reinterpret_cast<SmallShader*>(out.shaderStorage) + i;
-                    if constexpr (kSmallGouraud) {
+                    if constexpr (SmallShader::kReadsWeights) {
+                        const SmallWeights w{
+                            invArea2[i],
+                            {weightAt[0][i], weightAt[1][i], weightAt[2][i]},
+                            {weightPerColumn[0][i], weightPerColumn[1][i], weightPerColumn[2][i]},
+                            {weightPerRow[0][i], weightPerRow[1][i], weightPerRow[2][i]},
+                            out.firstColumn[i],
+                            out.firstRow[i]};
+                        const int canonical[3] = {vertex[0][i], vertex[1][i], vertex[2][i]};
                         const Vec3i& f = out.corners[i];
-                        const Vec3d* const c[3] = {&shaders.colors[f[vertex[0][i]]],
-                                                   &shaders.colors[f[vertex[1][i]]],
-                                                   &shaders.colors[f[vertex[2][i]]]};
-                        const int32_t edgeAt[3] = {weightAt[0][i], weightAt[1][i],
-                                                   weightAt[2][i]};
-                        const int32_t perColumn[3] = {weightPerColumn[0][i],
-                                                      weightPerColumn[1][i],
-                                                      weightPerColumn[2][i]};
-                        const int32_t perRow[3] = {weightPerRow[0][i], weightPerRow[1][i],
-                                                   weightPerRow[2][i]};
-                        new (shader) SmallShader(c, invArea2[i], edgeAt, perColumn, perRow,
-                                                 out.firstColumn[i], out.firstRow[i]);
+                        if constexpr (Shaders::kLightsFaces)
+                            new (shader) SmallShader(
+                                shaders.makeSmall(w, canonical, f, faces[i], out.lit(i)));
+                        else
+                            new (shader) SmallShader(shaders.makeSmall(w, canonical, f, faces[i]));
                     } else {
                         const TriangleSetup unread{};  // flat reads no setup
                         new (shader) SmallShader(shaders.make(unread, nullptr, out.corners[i],
@@ -1454,6 +1488,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     }
                 }
                 return true;
+            };
+            // Face i of `sf` that is not small: its shader, once setUpOther set it up.
+            auto makeOther = [&](const SmallFaces& sf, int i, int face, const TriangleSetup& t,
+                                 const int vertexOrder[3]) {
+                if constexpr (Shaders::kLightsFaces)
+                    return shaders.make(t, vertexOrder, sf.corners[i], face, sf.lit(i));
+                else
+                    return shaders.make(t, vertexOrder, sf.corners[i], face);
             };
             // Sets up face i of `sf` that is not small, as prepareBatch does; false: it covers
             // nothing.
@@ -1481,16 +1523,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 walkSmallRows<1>(begin, end, sf.firstColumn[i], onCanvas, faceAt0, faceColumn,
                                  faceRow, spanFn);
             };
-            /* Draws faces[0 .. count) in face order, each span by paintSpan, for a flat or
-            Gouraud shader: the tiny faces by setUpSmallFaces and walkSmall, the others as
-            prepareBatch and walkTriangle do. Out of line: inlined, it cost the band loop's other
-            paths 2-3%. (Gouraud's tiny faces lost 7-18% on the grids here while they kept the
-            one-face setup for their shaders; with smallWeightsEight they gain 20%.) */
+            /* Draws faces[0 .. count) in face order, each span by paintSpan: the tiny faces by
+            setUpSmallFaces and walkSmall, the others as prepareBatch and walkTriangle do. Out of
+            line: inlined, it cost the band loop's other paths 2-3%. (Gouraud's tiny faces lost
+            7-18% on the grids here while they kept the one-face setup for their shaders; with
+            smallWeightsEight they gain 20%.) */
             auto paintSmallFaces = [&](const int* faces, int count,
                                        auto& paintSpan) __attribute__((noinline)) {
                 SmallFaces sf;
                 setUpSmallFaces(faces, count, sf, false);
-                const Vec3i* const corners = sf.corners;
                 const TriangleSetup unread{};  // the shader reads no setup
                 for (int i = 0; i < count; i++) {
                     const int face = faces[i];
@@ -1519,18 +1560,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     int vertexOrder[3];
                     if (!setUpOther(sf, i, face, triangle, vertexOrder))
                         continue;
-                    const Shader shader = shaders.make(triangle, vertexOrder, corners[i], face);
+                    const Shader shader = makeOther(sf, i, face, triangle, vertexOrder);
                     walkTriangle(triangle, y0, y1, columns, [&](int row, int xBegin, int xEnd) {
                         paintSpan(triangle, shader, depth, row, xBegin, xEnd);
                     });
                 }
             };
-            /* Draws faces[0 .. count) of a front-to-back band in turn by claimFace, for a flat or
-            Gouraud shader: as paintSmallFaces, with each face's walk handed to claimFace. False,
-            having drawn nothing, where fewer than half of them are tiny: prepareBatch's loops
-            over the batch overlap the bigger faces' reads. */
-            auto claimSmallFaces = [&](const int* faces, int count,
-                                       auto& claimFace) __attribute__((noinline)) {
+            /* Draws faces[0 .. count) in turn by drawFace (the claims of a front-to-back band,
+            or the depth tests of a z-buffered one): as paintSmallFaces, with each face's walk
+            handed to drawFace. False, having drawn nothing, where fewer than half of them are
+            tiny: prepareBatch's loops over the batch overlap the bigger faces' reads. */
+            auto drawSmallFaces = [&](const int* faces, int count,
+                                      auto& drawFace) __attribute__((noinline)) {
                 SmallFaces sf;
                 if (!setUpSmallFaces(faces, count, sf, true))
                     return false;
@@ -1545,21 +1586,20 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     if (!setUpOther(sf, i, faces[i], triangle, vertexOrder))
                         continue;
                     new (&batch[i]) BatchFace{
-                        triangle, shaders.make(triangle, vertexOrder, sf.corners[i], faces[i]),
-                        faces[i]};
+                        triangle, makeOther(sf, i, faces[i], triangle, vertexOrder), faces[i]};
                     others |= 1u << i;
                 }
                 const TriangleSetup unread{};  // the shader reads no setup
                 for (int i = 0; i < count; i++) {
                     if (sf.small >> i & 1) {
-                        claimFace(faces[i], unread, sf.shader(i),
-                                  [&](int rowFirst, int rowLast, auto& spanFn) {
+                        drawFace(faces[i], unread, sf.shader(i),
+                                 [&](int rowFirst, int rowLast, auto& spanFn) {
                             walkSmall(sf, i, rowFirst, rowLast, spanFn);
                         });
                     } else if (others >> i & 1) {
                         const BatchFace& bf = batch[i];
-                        claimFace(bf.face, bf.triangle, bf.shader,
-                                  [&](int rowFirst, int rowLast, auto& spanFn) {
+                        drawFace(bf.face, bf.triangle, bf.shader,
+                                 [&](int rowFirst, int rowLast, auto& spanFn) {
                             walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
                         });
                     }
@@ -1597,19 +1637,32 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                 batchFaces[count++] = face;
                             }
                         }
-                        const int batchSize = prepareBatch(batchFaces, count);
-                        for (int i = 0; i < batchSize; i++) {
-                            const BatchFace& bf = batch[i];
-                            walkTriangle(bf.triangle, y0, y1, columns,
-                                         [&](int y, int xBegin, int xEnd) {
+                        // A set-up face: its samples, each tested against the buffer.
+                        auto depthTestFace = [&](int face, const TriangleSetup& triangle,
+                                                 const auto& shader, auto&& walk) {
+                            auto span = [&](int y, int xBegin, int xEnd) {
                                 const int r = y - y0;
                                 T* row = reinterpret_cast<T*>(pixels + size_t(y) * rowStep);
                                 float* weights = deferred
                                                      ? keptWeights.data() + size_t(r) * columns * 2
                                                      : nullptr;
-                                bf.shader.depthTest(bf.triangle, row, y, xBegin, xEnd, bf.face,
-                                                    zbuffer.keptRow(r), weights,
-                                                    zbuffer.coveredRow(r), zbuffer.boundRow(r));
+                                shader.depthTest(triangle, row, y, xBegin, xEnd, face,
+                                                 zbuffer.keptRow(r), weights,
+                                                 zbuffer.coveredRow(r), zbuffer.boundRow(r));
+                            };
+                            walk(y0, y1, span);
+                        };
+#if OPENCV_SHADING_BOX_EIGHT
+                        if (boxEight && smallFaces && shaders.smallShadersFit() &&
+                            drawSmallFaces(batchFaces, count, depthTestFace))
+                            continue;
+#endif
+                        const int batchSize = prepareBatch(batchFaces, count);
+                        for (int i = 0; i < batchSize; i++) {
+                            const BatchFace& bf = batch[i];
+                            depthTestFace(bf.face, bf.triangle, bf.shader,
+                                          [&](int rowFirst, int rowLast, auto& spanFn) {
+                                walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
                             });
                         }
                     }
@@ -1658,11 +1711,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     for (; next > 0 && count < kBatch; next--)
                         batchFaces[count++] = entryFace(order[next - 1]);
 #if OPENCV_SHADING_BOX_EIGHT
-                    if constexpr (std::is_same<Shader, FlatShader<T>>::value || kSmallGouraud) {
-                        if (boxEight && (!kSmallGouraud || shaders.colorsInRange)) {
-                            paintSmallFaces(batchFaces, count, paintSpan);
-                            continue;
-                        }
+                    if (boxEight && shaders.smallShadersFit()) {
+                        paintSmallFaces(batchFaces, count, paintSpan);
+                        continue;
                     }
 #endif
                     const int batchSize = prepareBatch(batchFaces, count);
@@ -1815,11 +1866,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     walk(firstRow, lastRow + 1, span);
                 };
 #if OPENCV_SHADING_BOX_EIGHT
-                if constexpr (std::is_same<Shader, FlatShader<T>>::value || kSmallGouraud) {
-                    if (boxEight && smallFaces && (!kSmallGouraud || shaders.colorsInRange) &&
-                        claimSmallFaces(batchFaces, count, claimFace))
-                        continue;
-                }
+                if (boxEight && smallFaces && shaders.smallShadersFit() &&
+                    drawSmallFaces(batchFaces, count, claimFace))
+                    continue;
 #endif
                 const int batchSize = prepareBatch(batchFaces, count);
                 for (int i = 0; i < batchSize; i++) {

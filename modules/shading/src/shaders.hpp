@@ -245,6 +245,8 @@ inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 /** Flat shading: the mean of the vertex colours, taken in the order the vertices were given. */
 template <typename T>
 struct FlatShader {
+    using Small = FlatShader;  //!< small faces' form: the same, set up with no weights
+    static constexpr bool kReadsWeights = false;
     T color[4];  //!< the colour; for float rows a copy of its first channel in the fourth lane
 
     FlatShader(const TriangleSetup&, const int*, const Vec3d* const c[3], bool = false)
@@ -355,6 +357,32 @@ struct ExactWeights {
     }
 };
 
+/** ExactWeights of a small face (kSmallColumns) set up with others in SIMD lanes
+(smallWeightsEight in raster.hpp), with no TriangleSetup: the same integers, hence the same
+weights. Edge function i (opposite canonical vertex i) is kept at the face's origin sample and
+stepped per column and per row in 32 bits, which a small face's samples never leave. */
+struct SmallWeights {
+    double invArea2;  //!< 1 / twice the signed area, canonical order
+    int32_t edgeAt[3], edgePerColumn[3], edgePerRow[3];  //!< at (originColumn, originRow)
+    int originColumn, originRow;
+
+    //! ExactWeights::stepX: the step per column is the exact integer -dy * 256.
+    void stepX(const TriangleSetup&, double dw[3]) const
+    {
+        for (int i = 0; i < 3; i++)
+            dw[i] = double(edgePerColumn[i]) * invArea2;
+    }
+
+    __attribute__((always_inline)) void at(const TriangleSetup&, int x, int y, double& w0,
+                                           double& w1, double& w2) const
+    {
+        const int dx = x - originColumn, dy = y - originRow;
+        w0 = double(edgeAt[0] + edgePerColumn[0] * dx + edgePerRow[0] * dy) * invArea2;
+        w1 = double(edgeAt[1] + edgePerColumn[1] * dx + edgePerRow[1] * dy) * invArea2;
+        w2 = double(edgeAt[2] + edgePerColumn[2] * dx + edgePerRow[2] * dy) * invArea2;
+    }
+};
+
 /** Whether a colour value is within +-1e37 (so not NaN): Gouraud colours beyond that are
 computed per pixel, where stepping in float could overflow. */
 inline bool gouraudInRange(double v)
@@ -364,8 +392,7 @@ inline bool gouraudInRange(double v)
 
 /** Writes Gouraud run [xBegin, xEnd) of the span that starts at spanBegin: channel k of pixel x
 is base[k] + stepX[k] * float(x - spanBegin), base[k] = float(w0 * color[0][k] + w1 * color[1][k]
-+ w2 * color[2][k]) from the exact weights (w0, w1, w2) of the span's first sample. Shared by
-GouraudShader and SmallGouraudShader, so that the two give the same pixels. */
++ w2 * color[2][k]) from the exact weights (w0, w1, w2) of the span's first sample. */
 template <typename T, bool kClaimedRun>
 __attribute__((always_inline)) inline void storeGouraudRun(const double color[3][3],
                                                            const float stepX[4], double w0,
@@ -411,12 +438,19 @@ colours, which is what interpolating along the edges and then along the span giv
 Each span starts from exact barycentric weights (ExactWeights), so the value stays accurate for
 any triangle; along the span it steps by the x-gradient in float. A pixel's value depends only
 on the triangle and its span's start, never on what was drawn before: masked and unmasked
-drawing, and any thread count, agree bit for bit. */
-template <typename T>
+drawing, and any thread count, agree bit for bit.
+
+Weights: ExactWeights, or SmallWeights for a small face set up with others (which must have its
+colours in range: it is never drawn per pixel). */
+template <typename T, class Weights = ExactWeights>
 struct GouraudShader {
+    //! The form of this shader for faces set up as SmallWeights.
+    using Small = GouraudShader<T, SmallWeights>;
+    static constexpr bool kReadsWeights = true;
+    static constexpr bool kMayShadePerPixel = std::is_same<Weights, ExactWeights>::value;
     double color[3][3];  //!< color[vertex][channel], vertices in the setup's canonical order
-    ExactWeights weights;
     float stepX[4];      //!< d(colour)/dx per pixel; a copy of the first in the fourth lane
+    Weights weights;
     //! A colour beyond +-1e37 (or not finite): values are computed per pixel, not stepped.
     bool perPixel;
 
@@ -425,6 +459,20 @@ struct GouraudShader {
     GouraudShader(const TriangleSetup& t, const int* order, const Vec3d* const c[3],
                   bool colorsInRange = false)
         : weights(t)
+    {
+        setUp(t, order, c, colorsInRange);
+    }
+
+    //! A small face (SmallWeights) whose colours are all within +-1e37.
+    GouraudShader(const Weights& w, const int* order, const Vec3d* const c[3]) : weights(w)
+    {
+        const TriangleSetup unread{};  // SmallWeights read no setup
+        setUp(unread, order, c, true);
+    }
+
+    //! The colours in canonical order, and their steps per column.
+    __attribute__((always_inline)) void setUp(const TriangleSetup& t, const int* order,
+                                              const Vec3d* const c[3], bool colorsInRange)
     {
         bool inRange = true;
         for (int i = 0; i < 3; i++)
@@ -476,66 +524,12 @@ struct GouraudShader {
     __attribute__((always_inline)) void shadeRun(const TriangleSetup& t, T* row, int y,
                                                  int spanBegin, int xBegin, int xEnd) const
     {
-        if (perPixel) {
+        if (kMayShadePerPixel && perPixel) {
             shadePerPixel(t, row, y, xBegin, xEnd);
             return;
         }
         double w0, w1, w2;
         weightsAt(t, spanBegin, y, w0, w1, w2);
-        storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
-    }
-};
-
-/** GouraudShader for a small face (kSmallColumns) set up with others in SIMD lanes
-(smallWeightsEight in raster.hpp), with no TriangleSetup: the same pixels, from the same exact
-integers. Edge function i (opposite canonical vertex i) is kept at the face's origin sample and
-stepped per column and row in 32 bits, which a small face's samples never leave; colours out of
-GouraudShader's float range are not for this shader. */
-template <typename T>
-struct SmallGouraudShader {
-    double color[3][3];  //!< color[vertex][channel], vertices in canonical order
-    float stepX[4];      //!< as GouraudShader's
-    double invArea2;     //!< 1 / twice the signed area, canonical order
-    int32_t edgeAt[3], edgePerColumn[3], edgePerRow[3];  //!< at (originColumn, originRow)
-    int originColumn, originRow;
-
-    /** c: the vertices' colours in canonical order; the edges as smallWeightsEight gives them,
-    for a face whose colours are all within +-1e37 (gouraudInRange). */
-    SmallGouraudShader(const Vec3d* const c[3], double inverseArea2, const int32_t at[3],
-                       const int32_t perColumn[3], const int32_t perRow[3], int column, int row)
-        : invArea2(inverseArea2), originColumn(column), originRow(row)
-    {
-        double dw[3];  // ExactWeights::stepX: -dy * 256 is the exact step per column
-        for (int i = 0; i < 3; i++) {
-            edgeAt[i] = at[i], edgePerColumn[i] = perColumn[i], edgePerRow[i] = perRow[i];
-            dw[i] = double(perColumn[i]) * invArea2;
-            for (int k = 0; k < 3; k++)
-                color[i][k] = (*c[i])[k];
-        }
-        const double maxStep = std::numeric_limits<float>::max();
-        for (int k = 0; k < 3; k++)
-            stepX[k] = float(std::clamp(dw[0] * color[0][k] + dw[1] * color[1][k] +
-                                        dw[2] * color[2][k], -maxStep, maxStep));
-        stepX[3] = stepX[0];
-    }
-
-    void operator()(const TriangleSetup& t, T* row, int y, int spanBegin, int xBegin,
-                    int xEnd) const
-    {
-        shadeRun(t, row, y, spanBegin, xBegin, xEnd);
-    }
-
-    template <bool kClaimedRun = false>
-    __attribute__((always_inline)) void shadeRun(const TriangleSetup&, T* row, int y,
-                                                 int spanBegin, int xBegin, int xEnd) const
-    {
-        const int dx = spanBegin - originColumn, dy = y - originRow;
-        const double w0 = double(edgeAt[0] + edgePerColumn[0] * dx + edgePerRow[0] * dy) *
-                          invArea2;
-        const double w1 = double(edgeAt[1] + edgePerColumn[1] * dx + edgePerRow[1] * dy) *
-                          invArea2;
-        const double w2 = double(edgeAt[2] + edgePerColumn[2] * dx + edgePerRow[2] * dy) *
-                          invArea2;
         storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
     }
 };

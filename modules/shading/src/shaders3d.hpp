@@ -345,13 +345,17 @@ perspective-correct form q_i = (w_i / z_i) / sum_j (w_j / z_j) and the depth
 1 / sum_j (w_j / z_j); then the z-buffer test, and the colour (see Surface): the attributes
 interpolated with q, then shadeAttributes. w_i / z_i is affine in screen space: each span starts
 from the exact weights (ExactWeights) and steps by its x-gradient, so a sample's values depend
-only on the face and its span. */
-template <typename T, Surface kSurface>
+only on the face and its span. Weights: ExactWeights, or SmallWeights for a small face set up
+with others (the same values). */
+template <typename T, Surface kSurface, class Weights = ExactWeights>
 struct SurfaceShader {
+    //! The form of this shader for faces set up as SmallWeights.
+    using Small = SurfaceShader<T, kSurface, SmallWeights>;
+    static constexpr bool kReadsWeights = true;
     //! The attributes a span interpolates itself: none for surfaces lit per sample, which are
     //! always drawn deferred (BandOptions::deferred) from the ScreenMesh's vertices.
     static constexpr int kAttributes = litPerSample(kSurface) ? 0 : attributeCount(kSurface);
-    ExactWeights weights;
+    Weights weights;
     double invZ[3];                                  //!< 1 / Zc per vertex, canonical order
     double stepX[3];                                 //!< d(w_i / z_i) / dx
     double attributes[3][kAttributes ? kAttributes : 1];
@@ -363,6 +367,11 @@ struct SurfaceShader {
 
     SurfaceShader(const TriangleSetup& t, const DepthTargets* out, int id)
         : weights(t), targets(out), faceId(id)
+    {
+    }
+
+    SurfaceShader(const Weights& w, const DepthTargets* out, int id)
+        : weights(w), targets(out), faceId(id)
     {
     }
 

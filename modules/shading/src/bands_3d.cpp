@@ -1,0 +1,254 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// The band pass's 3D entry point (bands.hpp): the mesh engine (mesh.hpp) with the span shaders
+// of drawMesh3d. bands_3d_avx2.cpp compiles this file again for AVX2, in its own namespaces
+// (see bands_2d.cpp for why 2D and 3D are separate units).
+#include <opencv2/shading.hpp>
+
+#include "bands.hpp"
+#include "mesh.hpp"
+#include "screen_mesh.hpp"
+#include "shaders.hpp"
+#include "shaders3d.hpp"
+
+#include <limits>
+
+#ifndef OPENCV_SHADING_BANDS_NAMESPACE
+#define OPENCV_SHADING_BANDS_NAMESPACE bands_baseline
+#endif
+
+namespace cv {
+namespace shading {
+namespace detail {
+OPENCV_SHADING_ISA_BEGIN
+namespace {
+
+template <typename T, Surface kSurface>
+void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
+                      const int* kept, const float* weights, const uint64_t* written, int width);
+
+/** The span shaders of the 3D path, built per face from the ScreenMesh. */
+template <typename T, Surface kSurface>
+struct SurfaceShaders {
+    using Shader = SurfaceShader<T, kSurface>;
+    using SmallShader = typename Shader::Small;
+    static constexpr int kAttributes = attributeCount(kSurface);  //!< per ScreenMesh vertex
+    static constexpr bool kZBuffer = true;  //!< SurfaceShader::depthTest
+    //! kFlat: lightFaces() gives make() the colours of lit faces (ScreenMesh::flatLit).
+    static constexpr bool kLightsFaces = kSurface == Surface::kFlat;
+    const ScreenMesh* screen;
+    const DepthTargets* targets;
+
+    /** Lit flat faces (ScreenMesh::flatLit): the colours of `count` set-up faces (at most
+    kLightBatch), lit together. Without lights, nothing: make() reads ScreenMesh::faceValues. */
+    void lightFaces(const int* faces, int count, float (*colors)[3]) const
+    {
+        const ScreenMesh::FlatLit& lit = screen->flatLit;
+        if (!lit.faces || count == 0)
+            return;
+        alignas(32) float in[9][kLightBatch];
+        alignas(32) float out[6][kLightBatch];
+        for (int j = 0; j < count; j++)
+            stageFace(lit.verts, &lit.colors, lit.faces[screen->sourceOf(faces[j])], in, j);
+        targets->lighting->lightRows(false, in, out, count);
+        for (int j = 0; j < count; j++)
+            for (int k = 0; k < 3; k++)
+                colors[j][k] = out[k][j];
+    }
+
+    void prefetchVertex(int vertex) const
+    {
+        __builtin_prefetch(&screen->invZ[vertex]);
+        if constexpr (Shader::kAttributes > 0)  // read by make()
+            __builtin_prefetch(&screen->attributes[size_t(vertex) * kAttributes]);
+    }
+
+    //! Fills the band's rows of the outputs this call created (DepthTargets::fillDepth).
+    void beginBand(int y0, int y1) const
+    {
+        const DepthTargets& out = *targets;
+        for (int y = y0; y < y1; y++) {
+            if (out.fillDepth)
+                std::fill_n(Shader::template outputRow<float>(out.depth, out.depthStep, y),
+                            out.width, std::numeric_limits<float>::infinity());
+            if (out.fillIds)
+                std::fill_n(Shader::template outputRow<int>(out.ids, out.idsStep, y), out.width, -1);
+        }
+    }
+
+    //! Deferred Phong (BandOptions::deferred): lights a row's kept (written) samples.
+    void shadeKeptRow(T* row, int y, const int* kept, const float* weights,
+                      const uint64_t* written, int width) const
+    {
+        if constexpr (litPerSample(kSurface))
+            shadeKeptSamples<T, kSurface>(*screen, *targets, row, y, kept, weights, written,
+                                          width);
+    }
+
+    //! Small faces' shaders give Shader's values for every face.
+    bool smallShadersFit() const { return true; }
+
+    //! The face's shader; `litColor`: its colour from lightFaces(), if it lit it.
+    Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int face,
+                const float* litColor = nullptr) const
+    {
+        Shader s(t, targets, screen->sourceOf(face));
+        finish(s, t, order, f, face, litColor);
+        return s;
+    }
+
+    //! make() for a small face set up with others (setUpSmallFaces in mesh.hpp).
+    SmallShader makeSmall(const SmallWeights& w, const int* order, const Vec3i& f, int face,
+                          const float* litColor = nullptr) const
+    {
+        SmallShader s(w, targets, screen->sourceOf(face));
+        const TriangleSetup unread{};  // SmallWeights read no setup
+        finish(s, unread, order, f, face, litColor);
+        return s;
+    }
+
+    //! The shader's values past its weights: per vertex in canonical `order`, and per face.
+    template <class S>
+    __attribute__((always_inline)) void finish(S& s, const TriangleSetup& t, const int* order,
+                                               const Vec3i& f, int face,
+                                               const float* litColor) const
+    {
+        for (int i = 0; i < 3; i++) {
+            const int v = f[order[i]];
+            s.invZ[i] = screen->invZ[v];
+            for (int k = 0; k < Shader::kAttributes; k++)  // none when lit per sample
+                s.attributes[i][k] = screen->attributes[size_t(v) * kAttributes + k];
+        }
+        s.finishSetup(t);
+        for (int i = 0; i < 3; i++) {
+            if (order[i] == 1)
+                s.slotOf1 = i;
+            if (order[i] == 2)
+                s.slotOf2 = i;
+        }
+        const float* values = screen->faceValues.data() + size_t(face) * screen->faceStride;
+        if constexpr (kSurface == Surface::kFlat)
+            for (int k = 0; k < 3; k++)
+                s.color[k] = toChannel<T>(screen->flatLit.faces ? litColor[k] : values[k]);
+        if constexpr (kSurface == Surface::kTexturedFaceLit)
+            for (int k = 0; k < 6; k++)
+                s.faceLight[k] = values[k];
+    }
+};
+
+/** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred), those whose
+bit is set in `written`: the kept face's vertex attributes weighted by the kept weights, lit a
+batch at a time. */
+template <typename T, Surface kSurface>
+void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
+                      const int* kept, const float* weights, const uint64_t* written, int width)
+{
+    int* const idRow =
+        targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
+    constexpr int n = attributeCount(kSurface);
+    constexpr int kPadded = (n + 3) & ~3;
+    int lastFace = -1;
+    LitBatch<T> pending;
+#if OPENCV_SHADING_SIMD128
+    v_float32x4 lanes[3][kPadded / 4];  // the kept face's vertex attributes, four a vector
+    for (auto& vertex : lanes)
+        for (v_float32x4& l : vertex)
+            l = v_setzero_f32();
+#else
+    float a[3][n] = {};  // the kept face's vertex attributes
+#endif
+    for (int word = 0; word < (width + 63) / 64; word++)
+        for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
+            const int x = word * 64 + __builtin_ctzll(bits);
+            const int face = kept[x];
+            if (idRow)
+                idRow[x] = screen.sourceOf(face);
+            if (face != lastFace) {
+                const Vec3i& f = screen.mesh.faces[face];
+                for (int i = 0; i < 3; i++) {
+                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
+#if OPENCV_SHADING_SIMD128
+                    // Each float as float(double) gives it; past n, zeros.
+                    auto pair = [&](int k) {
+                        return k + 2 <= n ? v_load(source + k)
+                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
+                    };
+                    for (int j = 0; j < kPadded / 4; j++)
+                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+#else
+                    for (int k = 0; k < n; k++)
+                        a[i][k] = float(source[k]);
+#endif
+                }
+                lastFace = face;
+            }
+            const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
+            alignas(16) float v[kPadded];
+#if OPENCV_SHADING_SIMD128
+            // The scalar loop's operations, four attributes at a time.
+            const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
+            for (int j = 0; j < kPadded / 4; j++)
+                v_store_aligned(v + 4 * j, l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j]);
+#else
+            for (int k = 0; k < n; k++)
+                v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
+#endif
+            shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
+        }
+    pending.flush(*targets.lighting);
+}
+
+template <typename T, Surface kSurface>
+void drawSurface(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets, bool zbuffer,
+                 const Vec<T, 3>* background)
+{
+    BandOptions options;
+    options.depthTested = zbuffer;
+    // Per-sample lighting costs more than the bookkeeping: shade each sample once.
+    options.deferred = options.frontToBack = litPerSample(kSurface);
+    drawMeshInBands(canvas, screen.mesh, SurfaceShaders<T, kSurface>{&screen, &targets},
+                    background, options);
+}
+
+template <typename T>
+void drawScreenMeshAs(Mat& canvas, const ScreenMesh& screen, const DepthTargets& targets,
+                      bool zbuffer, const Scalar* background)
+{
+    Vec<T, 3> bg;
+    const Vec<T, 3>* fill = backgroundAs(background, bg);
+    switch (screen.surface) {
+    case Surface::kFlat:
+        return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer, fill);
+    case Surface::kGouraud:
+        return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer, fill);
+    case Surface::kPhong:
+        return drawSurface<T, Surface::kPhong>(canvas, screen, targets, zbuffer, fill);
+    case Surface::kTextured:
+        return drawSurface<T, Surface::kTextured>(canvas, screen, targets, zbuffer, fill);
+    case Surface::kTexturedFaceLit:
+        return drawSurface<T, Surface::kTexturedFaceLit>(canvas, screen, targets, zbuffer, fill);
+    case Surface::kTexturedVertexLit:
+        return drawSurface<T, Surface::kTexturedVertexLit>(canvas, screen, targets, zbuffer,
+                                                           fill);
+    case Surface::kTexturedSampleLit:
+        return drawSurface<T, Surface::kTexturedSampleLit>(canvas, screen, targets, zbuffer,
+                                                           fill);
+    }
+}
+
+}  // namespace
+OPENCV_SHADING_ISA_END
+
+void OPENCV_SHADING_BANDS_NAMESPACE::drawScreenMesh(Mat& canvas, const ScreenMesh& screen,
+                                                    const DepthTargets& targets, bool zbuffer,
+                                                    const Scalar* background)
+{
+    if (canvas.depth() == CV_8U)
+        drawScreenMeshAs<uchar>(canvas, screen, targets, zbuffer, background);
+    else
+        drawScreenMeshAs<float>(canvas, screen, targets, zbuffer, background);
+}
+
+}  // namespace detail
+}  // namespace shading
+}  // namespace cv

@@ -1,0 +1,8 @@
+// This file is part of opencv_shading. License: Apache-2.0.
+//
+// bands_3d.cpp built for AVX2 (see isa_avx2.hpp).
+#if OPENCV_SHADING_HAVE_AVX2
+#include "isa_avx2.hpp"
+
+#include "bands_3d.cpp"
+#endif
