@@ -1,10 +1,10 @@
 // This file is part of opencv_shading. License: Apache-2.0.
 //
 // The entry points of the band pass, which is built once per instruction set (see isa.hpp):
-// bands.cpp for the baseline and bands_avx2.cpp for AVX2, the same code. The functions outside
-// the build namespaces call the AVX2 build where it is there and the CPU runs it (OpenCV's
-// checkHardwareSupport, so OPENCV_CPU_DISABLE=AVX2 turns it off), else the baseline; both draw
-// the same images bit for bit (no FMA contraction in either).
+// bands_2d.cpp and bands_3d.cpp for the baseline and their _avx2 twins for AVX2, the same code.
+// The functions outside the build namespaces (bands.cpp) call the AVX2 build where it is there
+// and the CPU runs it (OpenCV's checkHardwareSupport, so OPENCV_CPU_DISABLE=AVX2 turns it off),
+// else the baseline; both draw the same images bit for bit (no FMA contraction in either).
 #ifndef OPENCV_SHADING_BANDS_HPP
 #define OPENCV_SHADING_BANDS_HPP
 

@@ -332,7 +332,7 @@ __attribute__((always_inline)) inline bool setupBoxedTriangle(const FixedPoint i
 }
 
 /** The lanes that walkSmallTriangle tests a row's samples in: 8 columns a vector in the AVX2
-build (bands_avx2.cpp), 4 in the baseline. */
+build (isa_avx2.hpp), 4 in the baseline. */
 #if CV_SIMD256
 using SmallLanes = v_int32x8;
 inline SmallLanes smallLanesAll(int32_t v) { return v256_setall_s32(v); }
