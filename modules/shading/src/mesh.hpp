@@ -884,8 +884,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             narrow = snapPoints(mesh.vertices.data() + begin, work.snapped.data() + begin,
                                 end - begin);
         } else if (boxEightFits) {
+            // (drawMesh3d's vertices behind the near plane would otherwise take the whole mesh
+            // off the 8-face paths.)
             for (int i = begin; i < end; i++)
-                narrow &= isNarrowPoint(snapped[i]);
+                narrow &= isNarrowPoint(snapped[i]) || isUnusedPoint(snapped[i]);
         }
         if (!narrow)
             allNarrow.store(false, std::memory_order_relaxed);
@@ -1338,7 +1340,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     // The faces that set up, then their colours together (lit in SIMD lanes),
                     // then their shaders.
                     TriangleSetup triangles[kBatch];
-                    int vertexOrders[kBatch][3], setUp[kBatch], setUpFaces[kBatch];
+                    int vertexOrders[kBatch][3], setUp[kBatch];
+                    // Zeroed: GCC 12 (the sanitizer build) cannot see that lightFaces reads only
+                    // the first `prepared`, and warns.
+                    int setUpFaces[kBatch] = {};
                     for (int i = 0; i < count; i++)
                         if (setupBoxedTriangle(points[i], faceBox[faces[i]], size,
                                                triangles[prepared], vertexOrders[prepared])) {

@@ -237,7 +237,8 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
             const bool front = finite && c[2] >= zNear;
             chunkInFront &= front && (!textured || usableTexCoord(in.texCoords[i]));
             side[i] = !finite ? kNotFinite : front ? kInFront : kBehind;
-            projected[i] = front ? snapToGrid(cam.project(c)) : FixedPoint{kInvalidCoordinate, 0};
+            // Not in front: used by no face once the faces are cut at the near plane.
+            projected[i] = front ? snapToGrid(cam.project(c)) : kUnusedPoint;
             screen.invZ[i] = 1.0 / c[2];
             double* a = screen.attributes.data() + size_t(i) * stride;
             if (textured) {

@@ -70,6 +70,16 @@ inline FixedPoint snapToGrid(const Point2d& v)
     return {roundHalfAway(v.x * double(kSubpixelOne)), roundHalfAway(v.y * double(kSubpixelOne))};
 }
 
+/** A point no face uses (drawMesh3d's vertices behind the near plane, whose faces are cut or
+dropped): invalid like the others, and marked so that the band pass's check that every point is
+on the narrow grid can pass it by. */
+constexpr FixedPoint kUnusedPoint = {kInvalidCoordinate, 1};
+
+inline bool isUnusedPoint(const FixedPoint& p)
+{
+    return p.x == kUnusedPoint.x && p.y == kUnusedPoint.y;
+}
+
 inline bool isValid(const FixedPoint p[3])
 {
     return p[0].x != kInvalidCoordinate && p[1].x != kInvalidCoordinate &&
