@@ -1612,6 +1612,24 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 return true;
             };
 #endif
+            /* Draws faces[0 .. count) in turn by drawFace, as drawSmallFaces does: through it
+            where the band's faces are small, else each face set up by prepareBatch and walked by
+            walkTriangle. */
+            auto drawBatch = [&](const int* faces, int count, auto& drawFace) {
+#if OPENCV_SHADING_BOX_EIGHT
+                if (boxEight && smallFaces && shaders.smallShadersFit() &&
+                    drawSmallFaces(faces, count, drawFace))
+                    return;
+#endif
+                const int batchSize = prepareBatch(faces, count);
+                for (int i = 0; i < batchSize; i++) {
+                    const BatchFace& bf = batch[i];
+                    drawFace(bf.face, bf.triangle, bf.shader,
+                             [&](int rowFirst, int rowLast, auto& spanFn) {
+                        walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
+                    });
+                }
+            };
 
             if constexpr (Shaders::kZBuffer) {
                 if (depthTested) {
@@ -1657,19 +1675,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             };
                             walk(y0, y1, span);
                         };
-#if OPENCV_SHADING_BOX_EIGHT
-                        if (boxEight && smallFaces && shaders.smallShadersFit() &&
-                            drawSmallFaces(batchFaces, count, depthTestFace))
-                            continue;
-#endif
-                        const int batchSize = prepareBatch(batchFaces, count);
-                        for (int i = 0; i < batchSize; i++) {
-                            const BatchFace& bf = batch[i];
-                            depthTestFace(bf.face, bf.triangle, bf.shader,
-                                          [&](int rowFirst, int rowLast, auto& spanFn) {
-                                walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
-                            });
-                        }
+                        drawBatch(batchFaces, count, depthTestFace);
                     }
                     if (deferred)
                         for (int y = y0; y < y1; y++)
@@ -1870,19 +1876,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     };
                     walk(firstRow, lastRow + 1, span);
                 };
-#if OPENCV_SHADING_BOX_EIGHT
-                if (boxEight && smallFaces && shaders.smallShadersFit() &&
-                    drawSmallFaces(batchFaces, count, claimFace))
-                    continue;
-#endif
-                const int batchSize = prepareBatch(batchFaces, count);
-                for (int i = 0; i < batchSize; i++) {
-                    const BatchFace& bf = batch[i];
-                    claimFace(bf.face, bf.triangle, bf.shader,
-                              [&](int rowFirst, int rowLast, auto& spanFn) {
-                        walkTriangle(bf.triangle, rowFirst, rowLast, columns, spanFn);
-                    });
-                }
+                drawBatch(batchFaces, count, claimFace);
             }
             if constexpr (Shaders::kZBuffer)
                 if (deferred)

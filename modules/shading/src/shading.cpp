@@ -17,7 +17,7 @@ using namespace detail;
 
 namespace {
 
-template <template <typename> class Shader, typename T>
+template <template <typename...> class Shader, typename T>
 void drawTriangle(Mat& canvas, const Point2d v[3], const Vec3d c[3])
 {
     const FixedPoint p[3] = {snapToGrid(v[0]), snapToGrid(v[1]), snapToGrid(v[2])};
@@ -32,7 +32,7 @@ void drawTriangle(Mat& canvas, const Point2d v[3], const Vec3d c[3])
     });
 }
 
-template <template <typename> class Shader>
+template <template <typename...> class Shader>
 void drawTriangle(InputOutputArray canvasArr, InputArray vertices, InputArray vcolors)
 {
     checkCanvas(canvasArr, "canvas");
