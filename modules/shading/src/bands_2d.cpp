@@ -10,10 +10,6 @@
 #include "mesh.hpp"
 #include "shaders.hpp"
 
-#ifndef OPENCV_SHADING_BANDS_NAMESPACE
-#define OPENCV_SHADING_BANDS_NAMESPACE bands_baseline
-#endif
-
 namespace cv {
 namespace shading {
 namespace detail {

@@ -13,10 +13,6 @@
 
 #include <limits>
 
-#ifndef OPENCV_SHADING_BANDS_NAMESPACE
-#define OPENCV_SHADING_BANDS_NAMESPACE bands_baseline
-#endif
-
 namespace cv {
 namespace shading {
 namespace detail {

@@ -13,6 +13,11 @@
 #ifndef OPENCV_SHADING_ISA
 #define OPENCV_SHADING_ISA isa_baseline
 #endif
+// Where the band pass's units put their entry points (bands.hpp): bands_baseline unless
+// isa_avx2.hpp said otherwise.
+#ifndef OPENCV_SHADING_BANDS_NAMESPACE
+#define OPENCV_SHADING_BANDS_NAMESPACE bands_baseline
+#endif
 
 #define OPENCV_SHADING_ISA_BEGIN inline namespace OPENCV_SHADING_ISA {
 #define OPENCV_SHADING_ISA_END }
