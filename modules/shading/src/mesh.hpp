@@ -288,6 +288,14 @@ public:
             }
             if ((word & span) == span)
                 return 0;
+        } else if ((xBegin >> 6) + 1 == ((xEnd - 1) >> 6)) {
+            // Two words, wholly final: common for the spans of faces deep in a stack, which
+            // the run finder need not visit.
+            const uint64_t* pair = words + (xBegin >> 6);
+            const uint64_t head = ~uint64_t(0) << (xBegin & 63);
+            const uint64_t tail = ~uint64_t(0) >> (63 - ((xEnd - 1) & 63));
+            if ((pair[0] & head) == head && (pair[1] & tail) == tail)
+                return 0;
         }
         return claimRuns(words, xBegin, xEnd, run);
     }
