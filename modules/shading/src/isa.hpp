@@ -2,10 +2,10 @@
 //
 // The band pass (the rasterizer, its span shaders and the mesh engine) is compiled once per
 // instruction set: bands_2d.cpp and bands_3d.cpp for the baseline, their _avx2 twins for AVX2,
-// chosen at run time (bands.hpp). Its code lives in an inline namespace named after the set, so that the two builds
-// never share a function: without it the linker would keep one copy of each inline function and
-// template, and the AVX2 build would run baseline code (or the baseline AVX2 code, on a CPU
-// without it). The types the builds hand each other (MeshData, ScreenMesh, DepthTargets,
+// chosen at run time (bands.hpp). Its code lives in an inline namespace named after the set, so
+// that the two builds never share a function: without it the linker would keep one copy of each
+// inline function and template, and the AVX2 build would run baseline code (or the baseline AVX2
+// code, on a CPU without it). The types the builds hand each other (MeshData, ScreenMesh, DepthTargets,
 // Lighting, the texture samplers) stay outside it.
 #ifndef OPENCV_SHADING_ISA_HPP
 #define OPENCV_SHADING_ISA_HPP
