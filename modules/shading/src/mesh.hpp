@@ -297,12 +297,14 @@ public:
             if ((pair[0] & head) == head && (pair[1] & tail) == tail)
                 return 0;
         }
-        return claimRuns(words, xBegin, xEnd, run);
+        // `run` copied here, on the rare path: passed on by reference, it would be built in
+        // memory before the fast paths above too.
+        return claimRuns(words, xBegin, xEnd, std::decay_t<RunFn>(run));
     }
 
 private:
     template <typename RunFn>
-    __attribute__((noinline)) static int claimRuns(uint64_t* words, int xBegin, int xEnd, RunFn& run)
+    __attribute__((noinline)) static int claimRuns(uint64_t* words, int xBegin, int xEnd, RunFn run)
     {
         int claimed = 0;
         int runBegin = 0, runEnd = -1;  // the run found last, held back: the next may extend it
@@ -1542,7 +1544,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             7-18% on the grids here while they kept the one-face setup for their shaders; with
             smallWeightsEight they gain 20%.) */
             auto paintSmallFaces = [&](const int* faces, int count,
-                                       auto& paintSpan) __attribute__((noinline)) {
+                                       const auto& paintSpanGiven) __attribute__((noinline)) {
+                const auto paintSpan = paintSpanGiven;  // a copy kept in registers
                 SmallFaces sf;
                 setUpSmallFaces(faces, count, sf, false);
                 const TriangleSetup unread{};  // the shader reads no setup
@@ -1713,14 +1716,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     std::fill(bandDepths.begin(), bandDepths.end(), inf);
                 }
                 // A face's span: the samples that take it (all of them without depths).
-                auto paintSpan = [&](const TriangleSetup& t, const auto& shader, double depth,
-                                     int y, int xBegin, int xEnd) {
+                // Its values captured by copy: through references, each span reloaded them
+                // after every store, which may alias them.
+                auto paintSpan = [pixels, rowStep, byDepth, y0, columns,
+                                  depths = bandDepths.data()](const TriangleSetup& t,
+                                                              const auto& shader, double depth,
+                                                              int y, int xBegin, int xEnd) {
                     T* row = reinterpret_cast<T*>(pixels + size_t(y) * rowStep);
                     if (!byDepth) {  // face order is the painter's
                         shader(t, row, y, xBegin, xBegin, xEnd);
                         return;
                     }
-                    takeNearerOrEqual(bandDepths.data() + size_t(y - y0) * columns, xBegin, xEnd,
+                    takeNearerOrEqual(depths + size_t(y - y0) * columns, xBegin, xEnd,
                                       depth, [&](int a, int b) {
                         shader(t, row, y, xBegin, a, b);
                     });
@@ -1864,7 +1871,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         if (!(rowsToDraw >> r & 1))
                             return;
                         T* row = reinterpret_cast<T*>(bandData + size_t(r) * bandStep);
-                        rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&](int a, int b) {
+                        rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&, face, y, r, row,
+                                                                       xBegin](int a, int b) {
                             if constexpr (Shaders::kZBuffer) {
                                 if (deferred) {  // shaded below, a batch at a time
                                     shader.keep(triangle, y, a, b, face,
