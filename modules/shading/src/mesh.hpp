@@ -1873,6 +1873,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         T* row = reinterpret_cast<T*>(bandData + size_t(r) * bandStep);
                         rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&, face, y, r, row,
                                                                        xBegin](int a, int b) {
+                            (void)face, (void)r;  // read by the z-buffer's shaders only
                             if constexpr (Shaders::kZBuffer) {
                                 if (deferred) {  // shaded below, a batch at a time
                                     shader.keep(triangle, y, a, b, face,
