@@ -5,8 +5,8 @@
 // chosen at run time (bands.hpp). Its code lives in an inline namespace named after the set, so
 // that the two builds never share a function: without it the linker would keep one copy of each
 // inline function and template, and the AVX2 build would run baseline code (or the baseline AVX2
-// code, on a CPU without it). The types the builds hand each other (MeshData, ScreenMesh, DepthTargets,
-// Lighting, the texture samplers) stay outside it.
+// code, on a CPU without it). The types the builds hand each other (MeshData, ScreenMesh,
+// DepthTargets, Lighting, the texture samplers) stay outside it.
 #ifndef OPENCV_SHADING_ISA_HPP
 #define OPENCV_SHADING_ISA_HPP
 
