@@ -1167,16 +1167,60 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         }
         bandStart[k + 1] = next;
     }
+    // A band is painted, without a coverage mask, when the samples it would shade more
+    // than once (estimated from face areas) are fewer than this many per face: rewriting a
+    // few pixels costs less than the mask's work on every span of small faces.
+    constexpr double kOverdrawPerFacePainted = 32;
+    // Small faces: at most this many samples each, on average over the band. A painted band
+    // of small faces is drawn in face order, where each face's cost is mostly per face and
+    // the sort's scattered reads are saved; one of bigger faces back to front, sorted, where
+    // the depth test would cost more per sample than the sort does per face (the 2048 x
+    // 2048 grid's 128-sample faces: 1.20-1.35x in face order). Also front to back: bands of
+    // small faces wound both ways, at least a quarter of them each way. That is a closed
+    // surface seen with its back faces, which are hidden: the coverage test skips them
+    // whole, before any setup. (Big faces gain less: the mask's per-row work grows with
+    // them.)
+    constexpr double kSmallFaceSamples = 32;
+    // A band's way of drawing, decided for the whole band (its parts draw as it does) from its
+    // faces' count, area and winding.
+    struct BandWay {
+        bool smallFaces, inFaceOrder, backToFront;
+    };
+    auto bandWay = [&](int k) {
+        const size_t faces = bandStart[k + 1] - bandStart[k];
+        const int rows = std::min(size.height - k * bandRows, bandRows);
+        const double overdraw = bandArea[k] - double(rows) * size.width;
+        const size_t windingMinority = std::min(bandClockwise[k], faces - bandClockwise[k]);
+        const bool smallFaces = bandArea[k] <= kSmallFaceSamples * double(faces);
+        const bool closedSurface = 4 * windingMinority >= faces && smallFaces;
+        const bool littleOverdraw = !depthTested && !options.frontToBack &&
+                                    overdraw <= kOverdrawPerFacePainted * double(faces) &&
+                                    !closedSurface;
+        const bool inFaceOrder = littleOverdraw && smallFaces;
+        return BandWay{smallFaces, inFaceOrder, littleOverdraw && !inFaceOrder};
+    };
+    // Bands drawn in face order read no sort key: where no band sorts, the entries go without
+    // one (each face's key quantized and stored costs the million-face grid's binning ~17
+    // instructions a face).
+    bool anyBandSorts = false;
+    for (int k = 0; k < bandCount && byDepth && !anyBandSorts; k++)
+        anyBandSorts = bandStart[k + 1] > bandStart[k] && !bandWay(k).inFaceOrder;
     std::vector<uint64_t>& binned = work.binned;
     binned.resize(bandStart[bandCount]);
+    auto binChunk = [&](int c, auto kKeyed) {
+        uint64_t* cursor = &binCursor[size_t(c) * bandCount];
+        const int begin = c * chunkFaces;
+        for (int i = std::min(faceCount, begin + chunkFaces); i-- > begin;) {
+            const uint64_t entry = bandEntry(kKeyed ? quantizedKey(i) : 0, i);
+            forEachBand(boxes[i], [&](int k) { binned[cursor[k]++] = entry; });
+        }
+    };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
-            uint64_t* cursor = &binCursor[size_t(c) * bandCount];
-            const int begin = c * chunkFaces;
-            for (int i = std::min(faceCount, begin + chunkFaces); i-- > begin;) {
-                const uint64_t entry = bandEntry(quantizedKey(i), i);
-                forEachBand(boxes[i], [&](int k) { binned[cursor[k]++] = entry; });
-            }
+            if (anyBandSorts)
+                binChunk(c, std::true_type());
+            else
+                binChunk(c, std::false_type());
         }
     });
 
@@ -1253,20 +1297,6 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         constexpr size_t kBoxPrefetch = 16;  // entries ahead of the occlusion test
         // Entries ahead of the back-to-front slicing loop: a short loop, so farther ahead.
         constexpr size_t kSliceBoxPrefetch = 64;
-        // A band is painted, without a coverage mask, when the samples it would shade more
-        // than once (estimated from face areas) are fewer than this many per face: rewriting a
-        // few pixels costs less than the mask's work on every span of small faces.
-        constexpr double kOverdrawPerFacePainted = 32;
-        // Small faces: at most this many samples each, on average over the band. A painted band
-        // of small faces is drawn in face order, where each face's cost is mostly per face and
-        // the sort's scattered reads are saved; one of bigger faces back to front, sorted, where
-        // the depth test would cost more per sample than the sort does per face (the 2048 x
-        // 2048 grid's 128-sample faces: 1.20-1.35x in face order). Also front to back: bands of
-        // small faces wound both ways, at least a quarter of them each way. That is a closed
-        // surface seen with its back faces, which are hidden: the coverage test skips them
-        // whole, before any setup. (Big faces gain less: the mask's per-row work grows with
-        // them.)
-        constexpr double kSmallFaceSamples = 32;
         // Raw storage: the shaders have no default constructor and need none.
         alignas(BatchFace) unsigned char batchStorage[kBatch * sizeof(BatchFace)];
         BatchFace* const batch = reinterpret_cast<BatchFace*>(batchStorage);
@@ -1288,17 +1318,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             }
             uint64_t* order = binned.data() + bandStart[band];  // decreasing face order
             size_t orderSize = bandStart[band + 1] - bandStart[band];
-            // The band's way of drawing, decided for the whole band (its parts draw as it does).
-            const double overdraw = bandArea[band] - double(bandY1 - bandY0) * columns;
-            const size_t windingMinority =
-                std::min(bandClockwise[band], orderSize - bandClockwise[band]);
-            const bool smallFaces = bandArea[band] <= kSmallFaceSamples * double(orderSize);
-            const bool closedSurface = 4 * windingMinority >= orderSize && smallFaces;
-            const bool littleOverdraw =
-                !depthTested && !options.frontToBack &&
-                overdraw <= kOverdrawPerFacePainted * double(orderSize) && !closedSurface;
-            const bool inFaceOrder = littleOverdraw && smallFaces;
-            const bool backToFront = littleOverdraw && !inFaceOrder;
+            const BandWay way = bandWay(band);
+            [[maybe_unused]] const bool smallFaces = way.smallFaces;
+            const bool inFaceOrder = way.inFaceOrder, backToFront = way.backToFront;
             if (!part.whole()) {
                 // Part of a band: its own copy of the entries whose boxes reach its rows, as the
                 // other parts may be drawn at the same time and the lists are sorted in place.
