@@ -251,7 +251,7 @@ struct FlatShader {
 
     FlatShader(const TriangleSetup&, const int*, const Vec3d* const c[3], bool = false)
     {
-#if OPENCV_SHADING_SIMD128
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
         if constexpr (std::is_same<T, float>::value) {
             // The scalar loop's sums and divisions, two channels a vector: two divisions a
             // face instead of three, the fourth lane's copy of channel 0 divided with channel 2.
