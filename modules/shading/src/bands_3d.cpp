@@ -134,7 +134,8 @@ struct SurfaceShaders {
 
 /** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred), those whose
 bit is set in `written`: the kept face's vertex attributes weighted by the kept weights, lit a
-batch at a time. */
+batch at a time. Neighbouring samples mostly keep the same face: its attributes are read once
+for a run of them. */
 template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
                       const int* kept, const float* weights, const uint64_t* written, int width)
@@ -143,54 +144,74 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
         targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
     constexpr int n = attributeCount(kSurface);
     constexpr int kPadded = (n + 3) & ~3;
-    int lastFace = -1;
     LitBatch<T> pending;
+    const int words = (width + 63) / 64;
+    int word = 0;
+    uint64_t bits = words > 0 ? written[0] : 0;
+    // The next kept sample's column, -1 after the last.
+    auto nextSample = [&]() {
+        while (bits == 0)
+            if (++word == words)
+                return -1;
+            else
+                bits = written[word];
+        const int x = word * 64 + __builtin_ctzll(bits);
+        bits &= bits - 1;
+        return x;
+    };
+    for (int x = nextSample(); x >= 0;) {
+        const int face = kept[x];
+        const int faceId = idRow ? screen.sourceOf(face) : 0;
+        const Vec3i& f = screen.mesh.faces[face];
 #if OPENCV_SHADING_SIMD128
-    v_float32x4 lanes[3][kPadded / 4];  // the kept face's vertex attributes, four a vector
-    for (auto& vertex : lanes)
-        for (v_float32x4& l : vertex)
-            l = v_setzero_f32();
+        // The face's vertex attributes, four a vector (each float as float(double) gives it;
+        // past n, zeros), read again after each flush: no vector lives across the kernel's call.
+        v_float32x4 lanes[3][kPadded / 4];
+        for (int i = 0; i < 3; i++) {
+            const double* source = screen.attributes.data() + size_t(f[i]) * n;
+            auto pair = [&](int k) {
+                return k + 2 <= n ? v_load(source + k)
+                                  : v_float64x2(k < n ? source[k] : 0.0, 0.0);
+            };
+            for (int j = 0; j < kPadded / 4; j++)
+                lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+        }
 #else
-    float a[3][n] = {};  // the kept face's vertex attributes
+        float a[3][n];  // the kept face's vertex attributes
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < n; k++)
+                a[i][k] = float(screen.attributes[size_t(f[i]) * n + k]);
 #endif
-    for (int word = 0; word < (width + 63) / 64; word++)
-        for (uint64_t bits = written[word]; bits; bits &= bits - 1) {
-            const int x = word * 64 + __builtin_ctzll(bits);
-            const int face = kept[x];
+        // Its run of samples, up to a full batch.
+        do {
             if (idRow)
-                idRow[x] = screen.sourceOf(face);
-            if (face != lastFace) {
-                const Vec3i& f = screen.mesh.faces[face];
-                for (int i = 0; i < 3; i++) {
-                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
-#if OPENCV_SHADING_SIMD128
-                    // Each float as float(double) gives it; past n, zeros.
-                    auto pair = [&](int k) {
-                        return k + 2 <= n ? v_load(source + k)
-                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
-                    };
-                    for (int j = 0; j < kPadded / 4; j++)
-                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
-#else
-                    for (int k = 0; k < n; k++)
-                        a[i][k] = float(source[k]);
-#endif
-                }
-                lastFace = face;
-            }
+                idRow[x] = faceId;
             const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
-            alignas(16) float v[kPadded];
 #if OPENCV_SHADING_SIMD128
             // The scalar loop's operations, four attributes at a time.
             const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
+            v_float32x4 v[kPadded / 4];
             for (int j = 0; j < kPadded / 4; j++)
-                v_store_aligned(v + 4 * j, l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j]);
+                v[j] = l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j];
+            if constexpr (kSurface == Surface::kPhong) {
+                pending.addLanes(row + 3 * x, v[0], v[1], v[2]);
+            } else {
+                alignas(16) float values[kPadded];
+                for (int j = 0; j < kPadded / 4; j++)
+                    v_store_aligned(values + 4 * j, v[j]);
+                shadeAttributes<T, kSurface>(row + 3 * x, values, targets, &pending);
+            }
 #else
+            float v[n];
             for (int k = 0; k < n; k++)
                 v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
-#endif
             shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
-        }
+#endif
+            x = nextSample();
+        } while (x >= 0 && kept[x] == face && !pending.full());
+        if (pending.full())
+            pending.flush(*targets.lighting);
+    }
     pending.flush(*targets.lighting);
 }
 

@@ -199,56 +199,87 @@ inline void stageFace(const Rows3& verts, const Rows3* colors, const Vec3i& f,
 OPENCV_SHADING_ISA_BEGIN
 
 /** Samples waiting to be lit together (Phong): their pixels and interpolated position, normal
-and colour, lit a batch at a time in float lanes where SIMD is built, else one by one in double. */
+and colour, lit a batch at a time in float lanes where SIMD is built, else one by one in double.
+Where SIMD is built the values are staged straight in the lighting kernel's rows (value k of
+sample j in rows[k][j]), so that a full batch goes to the kernel as it is. */
 template <typename T>
 struct LitBatch {
     T* pixels[kLightBatch];
-    //! Per sample, as queued: its 9 values and 3 zeros, so that four samples transpose at once.
-    alignas(16) float staged[kLightBatch][12];
+    alignas(32) float rows[9][kLightBatch];
     int count = 0;
+
+    bool full() const { return count == kLightBatch; }
 
     //! Queues a pixel; v: position, normal (not normalized), colour. Lights when the batch is full.
     void add(T* pixel, const float v[9], const Lighting& lighting)
     {
-        float* sample = staged[count];
-        std::memcpy(sample, v, 9 * sizeof(float));
-        sample[9] = sample[10] = sample[11] = 0.f;
+        for (int k = 0; k < 9; k++)
+            rows[k][count] = v[k];
         pixels[count++] = pixel;
-        if (count == kLightBatch)
+        if (full())
             flush(lighting);
     }
+
+#if OPENCV_SHADING_SIMD128
+    /** add() without the flush (the caller flushes once full()), for values in lanes: a holds
+    values 0-3, b values 4-7, c value 8 in its first lane. */
+    __attribute__((always_inline)) void addLanes(T* pixel, const v_float32x4& a,
+                                                 const v_float32x4& b, const v_float32x4& c)
+    {
+        const int j = count;
+        storeLane<0>(&rows[0][j], a), storeLane<1>(&rows[1][j], a);
+        storeLane<2>(&rows[2][j], a), storeLane<3>(&rows[3][j], a);
+        storeLane<0>(&rows[4][j], b), storeLane<1>(&rows[5][j], b);
+        storeLane<2>(&rows[6][j], b), storeLane<3>(&rows[7][j], b);
+        storeLane<0>(&rows[8][j], c);
+        pixels[count++] = pixel;
+    }
+
+    //! Writes lane kLane of v to *to: one instruction where SSE4.1 is built (the AVX2 build).
+    template <int kLane>
+    static void storeLane(float* to, const v_float32x4& v)
+    {
+#if defined(__SSE4_1__)
+        const int bits = _mm_extract_ps(v.val, kLane);
+        std::memcpy(to, &bits, sizeof(bits));
+#else
+        *to = v_extract_n<kLane>(v);
+#endif
+    }
+#endif
 
     void flush(const Lighting& lighting)
     {
         if (count == 0)
             return;
 #if OPENCV_SHADING_SIMD128
-        const int padded = (count + 7) & ~7;  // whole vectors: the first sample repeated
-        for (int i = count; i < padded; i++)
-            std::memcpy(staged[i], staged[0], sizeof(staged[0]));
-        alignas(16) float rows[12][kLightBatch];  // the kernel's layout; rows 9 to 11 unread
-        for (int i = 0; i < padded; i += 4)
-            for (int j = 0; j < 12; j += 4) {
-                v_float32x4 r0, r1, r2, r3;
-                v_transpose4x4(v_load_aligned(staged[i] + j), v_load_aligned(staged[i + 1] + j),
-                               v_load_aligned(staged[i + 2] + j),
-                               v_load_aligned(staged[i + 3] + j), r0, r1, r2, r3);
-                v_store_aligned(rows[j] + i, r0);
-                v_store_aligned(rows[j + 1] + i, r1);
-                v_store_aligned(rows[j + 2] + i, r2);
-                v_store_aligned(rows[j + 3] + i, r3);
-            }
-        float lit[3][kLightBatch];
+        // Whole vectors: the first sample repeated (kLightBatch is a multiple of 8).
+        if (count % 8 != 0)
+            for (int k = 0; k < 9; k++)
+                for (int i = count; i % 8 != 0; i++)
+                    rows[k][i] = rows[k][0];
+        alignas(32) float lit[3][kLightBatch];
         shadeBatch(lighting.kernel, rows, lit, count);
-        for (int i = 0; i < count; i++)
+        int i = 0;
+        if constexpr (std::is_same<T, float>::value)
+            for (; i + 4 <= count; i += 4) {  // four pixels' colours a transpose
+                v_float32x4 p0, p1, p2, p3;
+                v_transpose4x4(v_load_aligned(lit[0] + i), v_load_aligned(lit[1] + i),
+                               v_load_aligned(lit[2] + i), v_load_aligned(lit[2] + i), p0, p1,
+                               p2, p3);
+                storePixel(pixels[i], p0);
+                storePixel(pixels[i + 1], p1);
+                storePixel(pixels[i + 2], p2);
+                storePixel(pixels[i + 3], p3);
+            }
+        for (; i < count; i++)
             for (int k = 0; k < 3; k++)
                 pixels[i][k] = toChannel<T>(lit[k][i]);
 #else
         for (int i = 0; i < count; i++) {
-            const float* v = staged[i];
-            const Vec3d c = lighting.shade(Vec3d(v[0], v[1], v[2]),
-                                           unitOrZero(Vec3d(v[3], v[4], v[5])),
-                                           Vec3d(v[6], v[7], v[8]));
+            const Vec3d c = lighting.shade(Vec3d(rows[0][i], rows[1][i], rows[2][i]),
+                                           unitOrZero(Vec3d(rows[3][i], rows[4][i], rows[5][i])),
+                                           Vec3d(rows[6][i], rows[7][i], rows[8][i]));
             for (int k = 0; k < 3; k++)
                 pixels[i][k] = toChannel<T>(float(c[k]));
         }
