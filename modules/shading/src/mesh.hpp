@@ -220,11 +220,19 @@ public:
     {
         wordsPerRow_ = (width + 63) / 64;
         bits_.resize(size_t(rows) * wordsPerRow_);
+        knownFinal_.resize(wordsPerRow_);
     }
 
-    size_t capacityBytes() const { return bits_.capacity() * sizeof(uint64_t); }
+    size_t capacityBytes() const
+    {
+        return (bits_.capacity() + knownFinal_.capacity()) * sizeof(uint64_t);
+    }
 
-    void clear() { std::fill(bits_.begin(), bits_.end(), uint64_t(0)); }
+    void clear()
+    {
+        std::fill(bits_.begin(), bits_.end(), uint64_t(0));
+        std::fill(knownFinal_.begin(), knownFinal_.end(), uint64_t(0));
+    }
 
     //! Row r's bits, 64 pixels a word.
     const uint64_t* row(int r) const { return bits_.data() + size_t(r) * wordsPerRow_; }
@@ -232,13 +240,21 @@ public:
     /** Bit r - rowBegin is set when pixels [colFirst, colLast] of row r are all final, for r in
     [rowBegin, rowEnd) (at most 64 rows): a face whose box lies within such rows adds nothing
     there. An occlusion test per face, far cheaper than walking it. With kUntilOpenRow, stops at
-    the first row that is not final (enough to tell whether any is open). */
+    the first open row found, and then reports only some of the final rows (none, or those above
+    it): enough to tell whether any row is open.
+
+    Boxes over more than two words are scanned a word column at a time (finalRowsByColumn),
+    taller ones within two words a row at a time by finalRowsOfTwoWords; both remember the words
+    they see wholly final. */
     template <bool kUntilOpenRow = false>
-    uint64_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast) const
+    uint64_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast)
     {
         const int first = colFirst >> 6, last = colLast >> 6;
         const uint64_t firstMask = ~uint64_t(0) << (colFirst & 63);
         const uint64_t lastMask = ~uint64_t(0) >> (63 - (colLast & 63));
+        if (rowEnd - rowBegin > kRowScanRows || last > first + 1)
+            return finalRowsByColumn<kUntilOpenRow>(rowBegin, rowEnd, first, last, firstMask,
+                                                    lastMask);
         const uint64_t* words = bits_.data() + size_t(rowBegin) * wordsPerRow_;
         const uint64_t all = ~uint64_t(0);
         uint64_t result = 0;
@@ -255,16 +271,9 @@ public:
         if (first == last) {
             const uint64_t outside = ~(firstMask & lastMask);
             scan([&](const uint64_t* w) { return (w[first] | outside) == all; });
-        } else if (last == first + 1) {
-            scan([&](const uint64_t* w) {
-                return ((w[first] | ~firstMask) & (w[last] | ~lastMask)) == all;
-            });
         } else {
             scan([&](const uint64_t* w) {
-                uint64_t final = (w[first] | ~firstMask) & (w[last] | ~lastMask);
-                for (int i = first + 1; i < last && final == all; i++)
-                    final &= w[i];
-                return final == all;
+                return ((w[first] | ~firstMask) & (w[last] | ~lastMask)) == all;
             });
         }
         return result;
@@ -304,6 +313,93 @@ public:
     }
 
 private:
+    //! Boxes up to this many rows (and two words wide) are scanned without knownFinal_.
+    static constexpr int kRowScanRows = 16;
+
+    /** finalRows for tall boxes within two words, a row at a time, skipping the rows whose
+    words were seen wholly final and remembering those it sees (knownFinal_, as
+    finalRowsByColumn). */
+    template <bool kUntilOpenRow>
+    __attribute__((noinline)) uint64_t finalRowsOfTwoWords(int rowBegin, int rowEnd, int first,
+                                                           int last, uint64_t firstMask,
+                                                           uint64_t lastMask)
+    {
+        const uint64_t all = ~uint64_t(0);
+        // The box's bits in each word (the same word twice where it has one).
+        const uint64_t inFirst = first == last ? firstMask & lastMask : firstMask;
+        const uint64_t inLast = first == last ? inFirst : lastMask;
+        uint64_t knownFirst = knownFinal_[first], knownLast = knownFinal_[last];
+        const uint64_t rows =
+            (rowEnd - rowBegin >= 64 ? all : (uint64_t(1) << (rowEnd - rowBegin)) - 1) << rowBegin;
+        uint64_t result = rows & knownFirst & knownLast;
+        for (uint64_t left = rows & ~result; left != 0; left &= left - 1) {
+            const int r = ctz(left);
+            const uint64_t* words = bits_.data() + size_t(r) * wordsPerRow_;
+            const uint64_t a = words[first], b = words[last];
+            knownFirst |= uint64_t(a == all) << r;
+            knownLast |= uint64_t(b == all) << r;
+            const bool final = ((a | ~inFirst) & (b | ~inLast)) == all;
+            result |= uint64_t(final) << r;
+            if (kUntilOpenRow && !final)
+                break;
+        }
+        knownFinal_[first] = knownFirst;
+        knownFinal_[last] = knownLast;
+        return result >> rowBegin;
+    }
+
+    /** finalRows for boxes over more than two words, a 64-pixel word column at a time, remembering the words found
+    wholly final (knownFinal_): final pixels stay final, so a later box over the same words skips
+    them, and a box hidden behind what earlier tests saw costs a load per column instead of one
+    per row and word. Only these tests write the summary, not the claims: kept by the claims, for
+    their many tiny spans, a summary cost more than it saved (history). With kUntilOpenRow the
+    box's first row is tried first, across all its words, where most visible faces show: a
+    column at a time, an open sample in a later column is found only after the earlier
+    columns' rows. Out of line, so that the band loop testing small boxes stays as it was. */
+    template <bool kUntilOpenRow>
+    __attribute__((noinline)) uint64_t finalRowsByColumn(int rowBegin, int rowEnd, int first,
+                                                         int last, uint64_t firstMask,
+                                                         uint64_t lastMask)
+    {
+        const uint64_t all = ~uint64_t(0);
+        if (kUntilOpenRow) {
+            const uint64_t* words = bits_.data() + size_t(rowBegin) * wordsPerRow_;
+            bool final = first == last
+                             ? (words[first] | ~(firstMask & lastMask)) == all
+                             : ((words[first] | ~firstMask) & (words[last] | ~lastMask)) == all;
+            for (int w = first + 1; w < last && final; w++)
+                final = words[w] == all;
+            if (!final)
+                return 0;
+        }
+        const uint64_t rows =
+            (rowEnd - rowBegin >= 64 ? all : (uint64_t(1) << (rowEnd - rowBegin)) - 1) << rowBegin;
+        uint64_t result = rows;  // the rows not found open yet
+        for (int w = first; w <= last && result != 0; w++) {
+            const uint64_t outside =
+                ~((w == first ? firstMask : all) & (w == last ? lastMask : all));
+            uint64_t known = knownFinal_[w];
+            const uint64_t* column = bits_.data() + w;
+            for (uint64_t unknown = result & ~known; unknown != 0; unknown &= unknown - 1) {
+                const int r = ctz(unknown);
+                const uint64_t word = column[size_t(r) * wordsPerRow_];
+                // Without branches where the whole box is scanned: often mispredicted.
+                known |= uint64_t(word == all) << r;
+                const bool open = (word | outside) != all;
+                if (kUntilOpenRow) {
+                    if (open) {
+                        knownFinal_[w] = known;
+                        return 0;  // fewer final rows than there are: allowed
+                    }
+                } else {
+                    result &= ~(uint64_t(open) << r);
+                }
+            }
+            knownFinal_[w] = known;
+        }
+        return result >> rowBegin;
+    }
+
     template <typename RunFn>
     __attribute__((noinline)) static int claimRuns(uint64_t* words, int xBegin, int xEnd, RunFn run)
     {
@@ -340,6 +436,8 @@ private:
 
     int wordsPerRow_ = 0;
     std::vector<uint64_t> bits_;
+    //! Per word column, bit r: row r's word is wholly final, as far as finalRowsByColumn saw.
+    std::vector<uint64_t> knownFinal_;
 };
 
 /** The depth test that draws the painter's image in face order: the samples of [xBegin, xEnd)
