@@ -243,9 +243,9 @@ public:
     the first open row found, and then reports only some of the final rows (none, or those above
     it): enough to tell whether any row is open.
 
-    Boxes over more than two words are scanned a word column at a time (finalRowsByColumn),
-    taller ones within two words a row at a time by finalRowsOfTwoWords; both remember the words
-    they see wholly final. */
+    Boxes over two words or kRowScanRows rows are scanned a word column at a time by
+    finalRowsByColumn, which remembers the words it sees wholly final; the others a row at a
+    time. */
     template <bool kUntilOpenRow = false>
     uint64_t finalRows(int rowBegin, int rowEnd, int colFirst, int colLast)
     {
@@ -313,49 +313,19 @@ public:
     }
 
 private:
-    //! Boxes up to this many rows (and two words wide) are scanned without knownFinal_.
+    //! Boxes of up to this many rows within two words are scanned row by row, without
+    //! knownFinal_ (cheaper for the small boxes of most faces).
     static constexpr int kRowScanRows = 16;
 
-    /** finalRows for tall boxes within two words, a row at a time, skipping the rows whose
-    words were seen wholly final and remembering those it sees (knownFinal_, as
-    finalRowsByColumn). */
-    template <bool kUntilOpenRow>
-    __attribute__((noinline)) uint64_t finalRowsOfTwoWords(int rowBegin, int rowEnd, int first,
-                                                           int last, uint64_t firstMask,
-                                                           uint64_t lastMask)
-    {
-        const uint64_t all = ~uint64_t(0);
-        // The box's bits in each word (the same word twice where it has one).
-        const uint64_t inFirst = first == last ? firstMask & lastMask : firstMask;
-        const uint64_t inLast = first == last ? inFirst : lastMask;
-        uint64_t knownFirst = knownFinal_[first], knownLast = knownFinal_[last];
-        const uint64_t rows =
-            (rowEnd - rowBegin >= 64 ? all : (uint64_t(1) << (rowEnd - rowBegin)) - 1) << rowBegin;
-        uint64_t result = rows & knownFirst & knownLast;
-        for (uint64_t left = rows & ~result; left != 0; left &= left - 1) {
-            const int r = ctz(left);
-            const uint64_t* words = bits_.data() + size_t(r) * wordsPerRow_;
-            const uint64_t a = words[first], b = words[last];
-            knownFirst |= uint64_t(a == all) << r;
-            knownLast |= uint64_t(b == all) << r;
-            const bool final = ((a | ~inFirst) & (b | ~inLast)) == all;
-            result |= uint64_t(final) << r;
-            if (kUntilOpenRow && !final)
-                break;
-        }
-        knownFinal_[first] = knownFirst;
-        knownFinal_[last] = knownLast;
-        return result >> rowBegin;
-    }
-
-    /** finalRows for boxes over more than two words, a 64-pixel word column at a time, remembering the words found
-    wholly final (knownFinal_): final pixels stay final, so a later box over the same words skips
-    them, and a box hidden behind what earlier tests saw costs a load per column instead of one
-    per row and word. Only these tests write the summary, not the claims: kept by the claims, for
-    their many tiny spans, a summary cost more than it saved (history). With kUntilOpenRow the
-    box's first row is tried first, across all its words, where most visible faces show: a
-    column at a time, an open sample in a later column is found only after the earlier
-    columns' rows. Out of line, so that the band loop testing small boxes stays as it was. */
+    /** finalRows for big boxes (over two words or kRowScanRows rows), a 64-pixel word column
+    at a time, remembering the words found wholly final (knownFinal_): final pixels stay final,
+    so a later box over the same words skips them, and a box hidden behind what earlier tests
+    saw costs a load per column instead of one per row and word. Only these tests write the
+    summary, not the claims: kept by the claims, for their many tiny spans, a summary cost more
+    than it saved (history). With kUntilOpenRow the box's first row is tried first, across all
+    its words, where most visible faces show: a column at a time, an open sample in a later
+    column is found only after the earlier columns' rows. Out of line, so that the band loop
+    testing small boxes stays as it was. */
     template <bool kUntilOpenRow>
     __attribute__((noinline)) uint64_t finalRowsByColumn(int rowBegin, int rowEnd, int first,
                                                          int last, uint64_t firstMask,
@@ -372,8 +342,8 @@ private:
             if (!final)
                 return 0;
         }
-        const uint64_t rows =
-            (rowEnd - rowBegin >= 64 ? all : (uint64_t(1) << (rowEnd - rowBegin)) - 1) << rowBegin;
+        const int count = rowEnd - rowBegin;
+        const uint64_t rows = (count >= 64 ? all : (uint64_t(1) << count) - 1) << rowBegin;
         uint64_t result = rows;  // the rows not found open yet
         for (int w = first; w <= last && result != 0; w++) {
             const uint64_t outside =
