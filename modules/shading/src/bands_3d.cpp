@@ -143,7 +143,7 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
     int* const idRow =
         targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
     constexpr int n = attributeCount(kSurface);
-    constexpr int kPadded = (n + 3) & ~3;
+    [[maybe_unused]] constexpr int kPadded = (n + 3) & ~3;  // n in whole vectors
     LitBatch<T> pending;
     const int words = (width + 63) / 64;
     int word = 0;
