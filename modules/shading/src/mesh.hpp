@@ -212,6 +212,12 @@ inline void streamingStoresDone()
 #endif
 }
 
+//! Bits 0 .. n - 1 set, for n in [0, 64].
+inline uint64_t rowsBelow(int n)
+{
+    return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
+}
+
 /** Which pixels of a band are final, one bit per pixel, so a span tests 64 pixels at a time. */
 class CoverageBits {
 public:
@@ -342,8 +348,7 @@ private:
             if (!final)
                 return 0;
         }
-        const int count = rowEnd - rowBegin;
-        const uint64_t rows = (count >= 64 ? all : (uint64_t(1) << count) - 1) << rowBegin;
+        const uint64_t rows = rowsBelow(rowEnd - rowBegin) << rowBegin;
         uint64_t result = rows;  // the rows not found open yet
         for (int w = first; w <= last && result != 0; w++) {
             const uint64_t outside =
@@ -437,12 +442,6 @@ time with 2 threads, random512 10%. Where that leaves few bands per thread, the 
 finish together, as runs end within bands (at a quarter) and the last bands are shared in
 halves (BandSchedule). */
 constexpr int kBandRowsLog2 = 6;
-
-//! Bits 0 .. n - 1 set, for n in [0, 64].
-inline uint64_t rowsBelow(int n)
-{
-    return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
-}
 
 /** log2 of the rows of a band painted back to front at a time: 32 rows while that is at most
 256 KB of canvas, else 16, so the rows being overwritten stay in a core's L2 cache. (Front to
