@@ -568,6 +568,41 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
         shortEdge.start(t.mid, t.bottom, begin, t.narrow);
     }
     const bool longLeft = t.longEdgeLeft;
+#if OPENCV_SHADING_SIMD128 && CV_AVX2
+    // Both edges stepped in one vector, lane 0 the left edge and lane 1 the right:
+    // EdgeWalker::nextRow in 64-bit lanes. The two walkers held ten general registers in the
+    // span callbacks' loops, which then kept their own values on the stack.
+    const EdgeWalker& left = longLeft ? longEdge : shortEdge;
+    const EdgeWalker& right = longLeft ? shortEdge : longEdge;
+    __m128i x = _mm_set_epi64x(right.x, left.x), rem = _mm_set_epi64x(right.rem, left.rem);
+    __m128i step = _mm_set_epi64x(right.step, left.step);
+    __m128i stepRem = _mm_set_epi64x(right.stepRem, left.stepRem);
+    __m128i den = _mm_set_epi64x(right.den, left.den);
+    __m128i denLess1 = _mm_sub_epi64(den, _mm_set1_epi64x(1));
+    for (int row = begin; row < end; row++) {
+        if (row == restartRow) {
+            shortEdge.start(t.mid, t.bottom, row, t.narrow);
+            const __m128i shortLane = longLeft ? _mm_set_epi64x(-1, 0) : _mm_set_epi64x(0, -1);
+            auto take = [&](__m128i& v, int64_t value) {
+                v = _mm_blendv_epi8(v, _mm_set1_epi64x(value), shortLane);
+            };
+            take(x, shortEdge.x);
+            take(rem, shortEdge.rem);
+            take(step, shortEdge.step);
+            take(stepRem, shortEdge.stepRem);
+            take(den, shortEdge.den);
+            take(denLess1, shortEdge.den - 1);
+        }
+        const int64_t xl = std::max<int64_t>(_mm_cvtsi128_si64(x), 0);
+        const int64_t xr = std::min<int64_t>(_mm_extract_epi64(x, 1), width);
+        if (xl < xr)
+            spanFn(row, int(xl), int(xr));
+        rem = _mm_add_epi64(rem, stepRem);
+        const __m128i carry = _mm_cmpgt_epi64(rem, denLess1);  // rem >= den: all ones
+        x = _mm_add_epi64(_mm_add_epi64(x, step), carry);
+        rem = _mm_sub_epi64(rem, _mm_and_si128(carry, den));
+    }
+#else
     for (int row = begin; row < end; row++) {
         if (row == restartRow)
             shortEdge.start(t.mid, t.bottom, row, t.narrow);
@@ -578,6 +613,7 @@ inline void walkTriangle(const TriangleSetup& t, int rowFirst, int rowLast, int 
         longEdge.nextRow();
         shortEdge.nextRow();
     }
+#endif
 }
 
 OPENCV_SHADING_ISA_END
