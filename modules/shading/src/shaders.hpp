@@ -165,23 +165,33 @@ is shorter; longer runs by storeColorGroups, or from 8 pixels on with AVX2 by 8 
 next: a store loop's exit, mispredicted on many of them, cost the demo mesh 4% of its frame in
 flat. Not for the spans of a regular mesh (a grid's), where the loop predicts well and stores
 less. */
+#if CV_AVX2
+/** Sets the float RGB pixels [0, n) (n >= 8) at `first` to the first three lanes of `color`:
+eight pixels in three 32-byte stores a step, then the last eight again. */
+__attribute__((always_inline)) inline void storeColorOctets(float* first, int n,
+                                                            const v_float32x4& color)
+{
+    v_float32x8 g0, g1, g2;
+    eightPixelLanes(color, g0, g1, g2);
+    float* p = first;
+    float* const last = first + 3 * (n - 8);
+    for (; p < last; p += 24) {
+        v_store(p, g0);
+        v_store(p + 8, g1);
+        v_store(p + 16, g2);
+    }
+    v_store(last, g0);
+    v_store(last + 8, g1);
+    v_store(last + 16, g2);
+}
+#endif
+
 __attribute__((always_inline)) inline void storeColorRun(float* first, int n,
                                                          const v_float32x4& color)
 {
 #if CV_AVX2
     if (n >= 8) {
-        v_float32x8 g0, g1, g2;
-        eightPixelLanes(color, g0, g1, g2);
-        float* p = first;
-        float* const last = first + 3 * (n - 8);
-        for (; p < last; p += 24) {
-            v_store(p, g0);
-            v_store(p + 8, g1);
-            v_store(p + 16, g2);
-        }
-        v_store(last, g0);
-        v_store(last + 8, g1);
-        v_store(last + 16, g2);
+        storeColorOctets(first, n, color);
         return;
     }
 #endif
@@ -208,7 +218,8 @@ inline void storeFloatPixels(float* row, int spanBegin, int xBegin, int xEnd, co
 
 /** Sets pixels [xBegin, xEnd) of an RGB row to `color`, touching nothing outside them. Float
 rows are written with 16-byte stores: four pixels per three stores in runs of four pixels or
-more, one per pixel (its fourth lane overwritten by the next pixel's store) in shorter ones. */
+more (with AVX2, eight per three 32-byte stores from eight pixels on), one per pixel (its fourth
+lane overwritten by the next pixel's store) in shorter ones. */
 template <typename T>
 inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 {
@@ -217,6 +228,12 @@ inline void fillPixels(T* row, int xBegin, int xEnd, const T color[3])
 #if OPENCV_SHADING_SIMD128
     if constexpr (std::is_same<T, float>::value) {
         const v_float32x4 c0(color[0], color[1], color[2], color[0]);
+#if CV_AVX2
+        if (xEnd - xBegin >= 8) {  // long runs of claims and spans, background rows
+            storeColorOctets(p, xEnd - xBegin, c0);
+            return;
+        }
+#endif
         if (xEnd - xBegin >= 4) {
             storeColorGroups(p, end, c0);
             return;
