@@ -156,15 +156,6 @@ __attribute__((always_inline)) inline void storeColorGroups(float* p, float* con
     }
 }
 
-/** Sets pixels [0, n) (n >= 1) of the float RGB run at `first` to `color` (its first three
-lanes), touching nothing outside the run, with no branch for runs of up to four pixels: four
-8 + 4-byte stores at pixels min(j, n - 1), j = 0 .. 3, the last pixel stored again where the run
-is shorter; longer runs by storeColorGroups, or from 8 pixels on with AVX2 by 8 pixels in three
-32-byte stores (random2048 1.5% faster). For the runs that coverage claims leave
-(CoverageBits::claim), whose lengths (1 to 8 pixels on the demo mesh) vary from one run to the
-next: a store loop's exit, mispredicted on many of them, cost the demo mesh 4% of its frame in
-flat. Not for the spans of a regular mesh (a grid's), where the loop predicts well and stores
-less. */
 #if CV_AVX2
 /** Sets the float RGB pixels [0, n) (n >= 8) at `first` to the first three lanes of `color`:
 eight pixels in three 32-byte stores a step, then the last eight again. */
@@ -186,6 +177,15 @@ __attribute__((always_inline)) inline void storeColorOctets(float* first, int n,
 }
 #endif
 
+/** Sets pixels [0, n) (n >= 1) of the float RGB run at `first` to `color` (its first three
+lanes), touching nothing outside the run, with no branch for runs of up to four pixels: four
+8 + 4-byte stores at pixels min(j, n - 1), j = 0 .. 3, the last pixel stored again where the run
+is shorter; longer runs by storeColorGroups, or from 8 pixels on with AVX2 by 8 pixels in three
+32-byte stores (random2048 1.5% faster). For the runs that coverage claims leave
+(CoverageBits::claim), whose lengths (1 to 8 pixels on the demo mesh) vary from one run to the
+next: a store loop's exit, mispredicted on many of them, cost the demo mesh 4% of its frame in
+flat. Not for the spans of a regular mesh (a grid's), where the loop predicts well and stores
+less. */
 __attribute__((always_inline)) inline void storeColorRun(float* first, int n,
                                                          const v_float32x4& color)
 {
