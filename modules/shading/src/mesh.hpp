@@ -291,41 +291,43 @@ public:
     int claim(int row, int xBegin, int xEnd, RunFn&& run)
     {
         uint64_t* words = bits_.data() + size_t(row) * wordsPerRow_;
-        bool wholeSpan = false;  // the span is wholly new: one run
+        uint64_t* const at = words + (xBegin >> 6);
+        const int wordX = xBegin & ~63;  // the column of at[0]'s bit 0
+        int a = xBegin, b = xEnd;        // the one new run, where there is one
         if ((xBegin >> 6) == ((xEnd - 1) >> 6)) {
             // The common case for small faces: one word, and the span wholly new or wholly taken.
             const uint64_t span = (~uint64_t(0) >> (64 - (xEnd - xBegin))) << (xBegin & 63);
-            uint64_t& word = words[xBegin >> 6];
-            if ((word & span) == 0) {
-                word |= span;
-                wholeSpan = true;
-            } else if ((word & span) == span) {
-                return 0;
-            }
+            const uint64_t fresh = span & ~at[0];
+            if (fresh != span)  // wholly final, or runs for the run finder
+                return fresh == 0 ? 0 : claimRuns(words, xBegin, xEnd, std::decay_t<RunFn>(run));
+            at[0] |= span;
         } else if ((xBegin >> 6) + 1 == ((xEnd - 1) >> 6)) {
-            // Two words, wholly final (common for the spans of faces deep in a stack) or wholly
-            // new (near the front of one): the run finder need not visit them.
-            uint64_t* pair = words + (xBegin >> 6);
+            // Two words: wholly final (common for the spans of faces deep in a stack), or new
+            // in one run (near the front of one), without the run finder.
             const uint64_t head = ~uint64_t(0) << (xBegin & 63);
             const uint64_t tail = ~uint64_t(0) >> (63 - ((xEnd - 1) & 63));
-            if ((pair[0] & head) == head && (pair[1] & tail) == tail)
-                return 0;
-            if ((pair[0] & head) == 0 && (pair[1] & tail) == 0) {
-                pair[0] |= head;
-                pair[1] |= tail;
-                wholeSpan = true;
+            const uint64_t fresh0 = head & ~at[0], fresh1 = tail & ~at[1];
+            if (fresh0 != head || fresh1 != tail) {
+                if ((fresh0 | fresh1) == 0)
+                    return 0;
+                if (!isOneRun(fresh0 | UInt128(fresh1) << 64))
+                    return claimRuns(words, xBegin, xEnd, std::decay_t<RunFn>(run));
+                a = wordX + (fresh0 ? ctz(fresh0) : 64 + ctz(fresh1));
+                b = wordX +
+                    (fresh1 ? 128 - __builtin_clzll(fresh1) : 64 - __builtin_clzll(fresh0));
             }
-        }
-        if (!wholeSpan) {
+            at[0] |= head;
+            at[1] |= tail;
+        } else {
             // `run` copied on this rare path, not passed on by reference (17M fewer instructions
             // a frame on bigsphere2048 with the callback's captures by copy; GCC still stores
             // part of the closure before the fast paths).
             return claimRuns(words, xBegin, xEnd, std::decay_t<RunFn>(run));
         }
-        // One call of `run` for both fast paths: a second inlined copy of it cost the knot in
+        // One call of `run` for every fast path: a second inlined copy of it cost the knot in
         // painter's order 1-2% (history).
-        run(xBegin, xEnd);
-        return xEnd - xBegin;
+        run(a, b);
+        return b - a;
     }
 
 private:
@@ -418,6 +420,12 @@ private:
     }
 
     static int ctz(uint64_t v) { return __builtin_ctzll(v); }  // v != 0
+
+    //! Whether the set bits of v (not 0) are consecutive: adding its lowest carries them all out.
+    static bool isOneRun(UInt128 v)
+    {
+        return ((v + (v & (~v + 1))) & v) == 0;
+    }
 
     int wordsPerRow_ = 0;
     std::vector<uint64_t> bits_;

@@ -37,6 +37,7 @@ OPENCV_SHADING_ISA_BEGIN
 
 // GCC and Clang provide 128-bit integers; __extension__ keeps -Wpedantic quiet about it.
 __extension__ typedef __int128 Int128;
+__extension__ typedef unsigned __int128 UInt128;
 
 //! Vertices live on a 1/256 pixel grid, as on GPUs: coverage is then decided exactly.
 constexpr int kSubpixelBits = 8;
