@@ -134,8 +134,8 @@ struct SurfaceShaders {
 
 /** Deferred lighting: lights the kept samples of a row (see BandOptions::deferred), those whose
 bit is set in `written`: the kept face's vertex attributes weighted by the kept weights, lit a
-batch at a time. Neighbouring samples mostly keep the same face: its attributes are read once
-for a run of them. */
+batch at a time. Neighbouring samples mostly keep the same face: they are taken in runs of one
+face, whose attributes are read once. */
 template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
                       const int* kept, const float* weights, const uint64_t* written, int width)
@@ -143,75 +143,75 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
     int* const idRow =
         targets.ids ? reinterpret_cast<int*>(targets.ids + size_t(y) * targets.idsStep) : nullptr;
     constexpr int n = attributeCount(kSurface);
-    [[maybe_unused]] constexpr int kPadded = (n + 3) & ~3;  // n in whole vectors
     LitBatch<T> pending;
-    const int words = (width + 63) / 64;
-    int word = 0;
-    uint64_t bits = words > 0 ? written[0] : 0;
-    // The next kept sample's column, -1 after the last.
-    auto nextSample = [&]() {
-        while (bits == 0)
-            if (++word == words)
-                return -1;
-            else
-                bits = written[word];
-        const int x = word * 64 + __builtin_ctzll(bits);
-        bits &= bits - 1;
-        return x;
-    };
-    for (int x = nextSample(); x >= 0;) {
-        const int face = kept[x];
-        const int faceId = idRow ? screen.sourceOf(face) : 0;
+    // Samples x .. end - 1, all kept by `face`.
+    auto shadeRun = [&](int x, int end, int face) {
+        if (idRow)
+            std::fill(idRow + x, idRow + end, screen.sourceOf(face));
         const Vec3i& f = screen.mesh.faces[face];
 #if OPENCV_SHADING_SIMD128
-        // The face's vertex attributes, four a vector (each float as float(double) gives it;
-        // past n, zeros), read again after each flush: no vector lives across the kernel's call.
-        v_float32x4 lanes[3][kPadded / 4];
-        for (int i = 0; i < 3; i++) {
-            const double* source = screen.attributes.data() + size_t(f[i]) * n;
-            auto pair = [&](int k) {
-                return k + 2 <= n ? v_load(source + k)
-                                  : v_float64x2(k < n ? source[k] : 0.0, 0.0);
-            };
-            for (int j = 0; j < kPadded / 4; j++)
-                lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+        if constexpr (kSurface == Surface::kPhong) {
+            // The scalar loop's operations, four attributes at a time: the face's attributes
+            // (each as float(double) gives it; past n, zeros), read again after a flush, as no
+            // vector lives across the kernel's call.
+            constexpr int kPadded = (n + 3) & ~3;
+            while (x < end) {
+                v_float32x4 lanes[3][kPadded / 4];
+                for (int i = 0; i < 3; i++) {
+                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
+                    auto pair = [&](int k) {
+                        return k + 2 <= n ? v_load(source + k)
+                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
+                    };
+                    for (int j = 0; j < kPadded / 4; j++)
+                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+                }
+                const int batchEnd = std::min(end, x + kLightBatch - pending.count);
+                for (; x < batchEnd; x++) {
+                    const v_float32x4 l1 = v_setall_f32(weights[2 * x]),
+                                      l2 = v_setall_f32(weights[2 * x + 1]),
+                                      l0 = v_setall_f32(1.f - weights[2 * x] - weights[2 * x + 1]);
+                    v_float32x4 v[kPadded / 4];
+                    for (int j = 0; j < kPadded / 4; j++)
+                        v[j] = l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j];
+                    pending.addLanes(row + 3 * x, v[0], v[1], v[2]);
+                }
+                if (pending.full())
+                    pending.flush(*targets.lighting);
+            }
+            return;
         }
-#else
-        float a[3][n];  // the kept face's vertex attributes
+#endif
+        float a[3][n];  // the face's vertex attributes, each as float(double) gives it
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < n; k++)
                 a[i][k] = float(screen.attributes[size_t(f[i]) * n + k]);
-#endif
-        // Its run of samples, up to a full batch.
-        do {
-            if (idRow)
-                idRow[x] = faceId;
+        for (; x < end; x++) {
             const float w1 = weights[2 * x], w2 = weights[2 * x + 1], w0 = 1.f - w1 - w2;
-#if OPENCV_SHADING_SIMD128
-            // The scalar loop's operations, four attributes at a time.
-            const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
-            v_float32x4 v[kPadded / 4];
-            for (int j = 0; j < kPadded / 4; j++)
-                v[j] = l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j];
-            if constexpr (kSurface == Surface::kPhong) {
-                pending.addLanes(row + 3 * x, v[0], v[1], v[2]);
-            } else {
-                alignas(16) float values[kPadded];
-                for (int j = 0; j < kPadded / 4; j++)
-                    v_store_aligned(values + 4 * j, v[j]);
-                shadeAttributes<T, kSurface>(row + 3 * x, values, targets, &pending);
-            }
-#else
             float v[n];
             for (int k = 0; k < n; k++)
                 v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
             shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
-#endif
-            x = nextSample();
-        } while (x >= 0 && kept[x] == face && !pending.full());
-        if (pending.full())
-            pending.flush(*targets.lighting);
-    }
+        }
+    };
+    const int words = (width + 63) / 64;
+    for (int word = 0; word < words; word++)
+        for (uint64_t bits = written[word]; bits;) {
+            // A run of kept samples in the word, cut where the kept face changes.
+            const int first = __builtin_ctzll(bits);
+            const uint64_t from = bits >> first;
+            const int length = ~from == 0 ? 64 - first : __builtin_ctzll(~from);
+            bits &= ~(rowsBelow(length) << first);
+            const int end = word * 64 + first + length;
+            for (int x = word * 64 + first; x < end;) {
+                const int face = kept[x];
+                int runEnd = x + 1;
+                while (runEnd < end && kept[runEnd] == face)
+                    runEnd++;
+                shadeRun(x, runEnd, face);
+                x = runEnd;
+            }
+        }
     pending.flush(*targets.lighting);
 }
 
