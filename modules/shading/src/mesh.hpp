@@ -1974,28 +1974,34 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         return;
                     const int firstRow = y0 + __builtin_ctzll(rowsToDraw);
                     const int lastRow = y0 + 63 - __builtin_clzll(rowsToDraw);
+                    // Shades run [a, b) of span [xBegin, ...) on row y (r from y0).
+                    const auto shadeRun = [&](int y, int r, T* row, int xBegin, int a, int b) {
+                        (void)face, (void)r;  // read by the z-buffer's shaders only
+                        if constexpr (Shaders::kZBuffer) {
+                            if (deferred) {  // shaded below, a batch at a time
+                                shader.keep(triangle, y, a, b, face,
+                                            keptFaces.data() + size_t(r) * columns,
+                                            keptWeights.data() + size_t(r) * columns * 2);
+                                return;
+                            }
+                        }
+                        if constexpr (std::is_same<Shader, GouraudShader<T>>::value ||
+                                      std::is_same<Shader, FlatShader<T>>::value)
+                            shader.template shadeRun<true>(triangle, row, y, xBegin, a, b);
+                        else
+                            shader(triangle, row, y, xBegin, a, b);
+                    };
                     auto span = [&](int y, int xBegin, int xEnd) {
                         const int r = y - y0;
                         if (!(rowsToDraw >> r & 1))
                             return;
                         T* row = reinterpret_cast<T*>(bandData + size_t(r) * bandStep);
-                        rowLeft[r] -= coverage.claim(r, xBegin, xEnd, [&, face, y, r, row,
-                                                                       xBegin](int a, int b) {
-                            (void)face, (void)r;  // read by the z-buffer's shaders only
-                            if constexpr (Shaders::kZBuffer) {
-                                if (deferred) {  // shaded below, a batch at a time
-                                    shader.keep(triangle, y, a, b, face,
-                                                keptFaces.data() + size_t(r) * columns,
-                                                keptWeights.data() + size_t(r) * columns * 2);
-                                    return;
-                                }
-                            }
-                            if constexpr (std::is_same<Shader, GouraudShader<T>>::value ||
-                                          std::is_same<Shader, FlatShader<T>>::value)
-                                shader.template shadeRun<true>(triangle, row, y, xBegin, a, b);
-                            else
-                                shader(triangle, row, y, xBegin, a, b);
-                        });
+                        // A small callback (the face's part by reference): GCC stores its
+                        // captures before the claim's fast paths, on every span.
+                        rowLeft[r] -= coverage.claim(
+                            r, xBegin, xEnd, [&shadeRun, y, r, row, xBegin](int a, int b) {
+                                shadeRun(y, r, row, xBegin, a, b);
+                            });
                         if (rowLeft[r] == 0)
                             fullRows |= uint64_t(1) << r;
                     };
