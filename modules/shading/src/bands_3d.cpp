@@ -150,38 +150,54 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
             std::fill(idRow + x, idRow + end, screen.sourceOf(face));
         const Vec3i& f = screen.mesh.faces[face];
 #if OPENCV_SHADING_SIMD128
+        // The scalar loop's operations (below), four attributes at a time: the face's attributes
+        // (each as float(double) gives it; past n, zeros) in `lanes`.
+        constexpr int kPadded = (n + 3) & ~3;
+        using Lanes = v_float32x4[3][kPadded / 4];
+        auto loadLanes = [&](Lanes& lanes) {
+            for (int i = 0; i < 3; i++) {
+                const double* source = screen.attributes.data() + size_t(f[i]) * n;
+                auto pair = [&](int k) {
+                    return k + 2 <= n ? v_load(source + k)
+                                      : v_float64x2(k < n ? source[k] : 0.0, 0.0);
+                };
+                for (int j = 0; j < kPadded / 4; j++)
+                    lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
+            }
+        };
+        // Sample `at`'s attributes.
+        auto interpolate = [&](const Lanes& lanes, int at, v_float32x4 (&v)[kPadded / 4]) {
+            const float w1 = weights[2 * at], w2 = weights[2 * at + 1], w0 = 1.f - w1 - w2;
+            const v_float32x4 l0 = v_setall_f32(w0), l1 = v_setall_f32(w1), l2 = v_setall_f32(w2);
+            for (int j = 0; j < kPadded / 4; j++)
+                v[j] = l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j];
+        };
         if constexpr (kSurface == Surface::kPhong) {
-            // The scalar loop's operations, four attributes at a time: the face's attributes
-            // (each as float(double) gives it; past n, zeros), read again after a flush, as no
-            // vector lives across the kernel's call.
-            constexpr int kPadded = (n + 3) & ~3;
             while (x < end) {
-                v_float32x4 lanes[3][kPadded / 4];
-                for (int i = 0; i < 3; i++) {
-                    const double* source = screen.attributes.data() + size_t(f[i]) * n;
-                    auto pair = [&](int k) {
-                        return k + 2 <= n ? v_load(source + k)
-                                          : v_float64x2(k < n ? source[k] : 0.0, 0.0);
-                    };
-                    for (int j = 0; j < kPadded / 4; j++)
-                        lanes[i][j] = v_cvt_f32(pair(4 * j), pair(4 * j + 2));
-                }
+                Lanes lanes;  // read again after a flush: no vector lives across the kernel's call
+                loadLanes(lanes);
                 const int batchEnd = std::min(end, x + kLightBatch - pending.count);
                 for (; x < batchEnd; x++) {
-                    const v_float32x4 l1 = v_setall_f32(weights[2 * x]),
-                                      l2 = v_setall_f32(weights[2 * x + 1]),
-                                      l0 = v_setall_f32(1.f - weights[2 * x] - weights[2 * x + 1]);
                     v_float32x4 v[kPadded / 4];
-                    for (int j = 0; j < kPadded / 4; j++)
-                        v[j] = l0 * lanes[0][j] + l1 * lanes[1][j] + l2 * lanes[2][j];
+                    interpolate(lanes, x, v);
                     pending.addLanes(row + 3 * x, v[0], v[1], v[2]);
                 }
                 if (pending.full())
                     pending.flush(*targets.lighting);
             }
-            return;
+        } else {
+            Lanes lanes;
+            loadLanes(lanes);
+            for (; x < end; x++) {
+                v_float32x4 v[kPadded / 4];
+                interpolate(lanes, x, v);
+                alignas(16) float values[kPadded];
+                for (int j = 0; j < kPadded / 4; j++)
+                    v_store_aligned(values + 4 * j, v[j]);
+                shadeAttributes<T, kSurface>(row + 3 * x, values, targets, &pending);
+            }
         }
-#endif
+#else
         float a[3][n];  // the face's vertex attributes, each as float(double) gives it
         for (int i = 0; i < 3; i++)
             for (int k = 0; k < n; k++)
@@ -193,6 +209,7 @@ void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* 
                 v[k] = w0 * a[0][k] + w1 * a[1][k] + w2 * a[2][k];
             shadeAttributes<T, kSurface>(row + 3 * x, v, targets, &pending);
         }
+#endif
     };
     const int words = (width + 63) / 64;
     for (int word = 0; word < words; word++)
