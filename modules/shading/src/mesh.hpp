@@ -1835,6 +1835,21 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         shader(t, row, y, xBegin, xBegin, xEnd);
                         return;
                     }
+                    using FaceShader = std::decay_t<decltype(shader)>;
+                    if constexpr (std::is_same<T, float>::value && HasPen<FaceShader>::value) {
+                        // A tiny face's span (1.75 samples on the million-face grid): each
+                        // sample tested and stored alone, without finding runs first.
+                        if (xEnd - xBegin <= 4 && shader.penFits()) {
+                            const auto pen = shader.pen(t, y, xBegin);
+                            double* const nearest = depths + size_t(y - y0) * columns;
+                            for (int x = xBegin; x < xEnd; x++)
+                                if (!(nearest[x] < depth)) {
+                                    nearest[x] = depth;
+                                    pen.put(row, x);
+                                }
+                            return;
+                        }
+                    }
                     takeNearerOrEqual(depths + size_t(y - y0) * columns, xBegin, xEnd,
                                       depth, [&](int a, int b) {
                         shader(t, row, y, xBegin, a, b);

@@ -317,6 +317,24 @@ struct FlatShader {
 #endif
         fillPixels(row, xBegin, xEnd, color);
     }
+
+#if OPENCV_SHADING_SIMD128
+    /** A span's pixels one at a time (float rows only): put(row, x) stores what shadeRun stores
+    at x. For the spans of a pixel or few whose samples are each depth-tested: no run to find. */
+    struct Pen {
+        v_float32x4 value;
+        __attribute__((always_inline)) void put(float* row, int x) const
+        {
+            storePixel(row + 3 * x, value);
+        }
+    };
+    //! Whether pen() serves this face: always.
+    bool penFits() const { return true; }
+    __attribute__((always_inline)) Pen pen(const TriangleSetup&, int, int) const
+    {
+        return Pen{v_load(color)};
+    }
+#endif
 };
 
 /** Exact barycentric weights of a set-up triangle's samples: integer edge functions at the
@@ -562,7 +580,40 @@ struct GouraudShader {
         weightsAt(t, spanBegin, y, w0, w1, w2);
         storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
     }
+
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+    /** FlatShader::Pen's counterpart (float rows only): the values storeGouraudRun gives the
+    span that starts at spanBegin, channel k of pixel x base[k] + stepX[k] * float(x - spanBegin),
+    the same sums and the same products. */
+    struct Pen {
+        v_float32x4 base, step;
+        int spanBegin;
+        __attribute__((always_inline)) void put(float* row, int x) const
+        {
+            storePixel(row + 3 * x, base + step * v_setall_f32(float(x - spanBegin)));
+        }
+    };
+    //! Whether pen() serves this face: not where its colours are computed per pixel.
+    bool penFits() const { return !(kMayShadePerPixel && perPixel); }
+    __attribute__((always_inline)) Pen pen(const TriangleSetup& t, int y, int spanBegin) const
+    {
+        double w0, w1, w2;
+        weightsAt(t, spanBegin, y, w0, w1, w2);
+        const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
+        const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) +
+                               c * v_load(color[2]);
+        const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
+                               c * v_setall_f64(color[2][2]);
+        return Pen{v_cvt_f32(lo, hi), v_load(stepX), spanBegin};
+    }
+#endif
 };
+
+//! Whether Shader has a Pen (FlatShader::Pen).
+template <class Shader, class = void>
+struct HasPen : std::false_type {};
+template <class Shader>
+struct HasPen<Shader, std::void_t<typename Shader::Pen>> : std::true_type {};
 
 OPENCV_SHADING_ISA_END
 }  // namespace detail
