@@ -11,6 +11,7 @@
 #include <opencv2/core/hal/intrin.hpp>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -429,7 +430,28 @@ struct SmallWeights {
         w1 = double(edgeAt[1] + edgePerColumn[1] * dx + edgePerRow[1] * dy) * invArea2;
         w2 = double(edgeAt[2] + edgePerColumn[2] * dx + edgePerRow[2] * dy) * invArea2;
     }
+
+#if CV_AVX2
+    //! at()'s (w0, w1, w2) in lanes 0-2 (lane 3 not meaningful): the same integers, the same
+    //! products.
+    __attribute__((always_inline)) __m256d atLanes(int x, int y) const
+    {
+        // Each load's fourth lane is the next field's first: not meaningful, and never traps.
+        auto lanes = [](const int32_t* v) {
+            return _mm_loadu_si128(reinterpret_cast<const __m128i*>(v));
+        };
+        const __m128i edges = _mm_add_epi32(
+            _mm_add_epi32(lanes(edgeAt),
+                          _mm_mullo_epi32(lanes(edgePerColumn), _mm_set1_epi32(x - originColumn))),
+            _mm_mullo_epi32(lanes(edgePerRow), _mm_set1_epi32(y - originRow)));
+        return _mm256_mul_pd(_mm256_cvtepi32_pd(edges), _mm256_set1_pd(invArea2));
+    }
+#endif
 };
+static_assert(offsetof(SmallWeights, edgePerColumn) == offsetof(SmallWeights, edgeAt) + 12 &&
+                  offsetof(SmallWeights, edgePerRow) == offsetof(SmallWeights, edgePerColumn) + 12 &&
+                  offsetof(SmallWeights, originColumn) == offsetof(SmallWeights, edgePerRow) + 12,
+              "SmallWeights::atLanes reads 4 lanes from each edge array");
 
 /** Whether a colour value is within +-1e37 (so not NaN): Gouraud colours beyond that are
 computed per pixel, where stepping in float could overflow. */
@@ -576,10 +598,37 @@ struct GouraudShader {
             shadePerPixel(t, row, y, xBegin, xEnd);
             return;
         }
+#if CV_AVX2
+        if constexpr (std::is_same<Weights, SmallWeights>::value &&
+                      std::is_same<T, float>::value) {
+            storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd, smallBase(y, spanBegin),
+                                          v_load(stepX));
+            return;
+        }
+#endif
         double w0, w1, w2;
         weightsAt(t, spanBegin, y, w0, w1, w2);
         storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
     }
+
+#if CV_AVX2
+    /** storeGouraudRun's base for a small face's span from spanBegin on row y, channels 0, 1, 2,
+    2 in float: the same sums of the same weights, in 4 lanes. A tiny face's spans are a pixel
+    or two, so this is most of their cost. */
+    __attribute__((always_inline)) v_float32x4 smallBase(int y, int spanBegin) const
+    {
+        const __m256d w = weights.atLanes(spanBegin, y);
+        auto channels = [&](int i) {
+            return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(color[i])),
+                                        _mm_set1_pd(color[i][2]), 1);
+        };
+        const __m256d sum = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(_mm256_permute4x64_pd(w, 0x00), channels(0)),
+                          _mm256_mul_pd(_mm256_permute4x64_pd(w, 0x55), channels(1))),
+            _mm256_mul_pd(_mm256_permute4x64_pd(w, 0xaa), channels(2)));
+        return v_float32x4(_mm256_cvtpd_ps(sum));
+    }
+#endif
 
 #if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
     /** FlatShader::Pen's counterpart (float rows only): the values storeGouraudRun gives the
@@ -597,6 +646,10 @@ struct GouraudShader {
     bool penFits() const { return !(kMayShadePerPixel && perPixel); }
     __attribute__((always_inline)) Pen pen(const TriangleSetup& t, int y, int spanBegin) const
     {
+#if CV_AVX2
+        if constexpr (std::is_same<Weights, SmallWeights>::value)
+            return Pen{smallBase(y, spanBegin), v_load(stepX), spanBegin};
+#endif
         double w0, w1, w2;
         weightsAt(t, spanBegin, y, w0, w1, w2);
         const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
