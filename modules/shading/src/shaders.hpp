@@ -536,6 +536,39 @@ struct GouraudShader {
     //! A small face (SmallWeights) whose colours are all within +-1e37.
     GouraudShader(const Weights& w, const int* order, const Vec3d* const c[3]) : weights(w)
     {
+#if CV_AVX2
+        if constexpr (std::is_same<Weights, SmallWeights>::value) {
+            // setUp's copies and sums, in 4 lanes (channels 0, 1, 2, 2): the same products,
+            // sums, clamps and roundings.
+            __m256d channels[3];
+            for (int i = 0; i < 3; i++) {
+                const double* const v = c[order[i]]->val;
+                const __m128d first2 = _mm_loadu_pd(v);
+                _mm_storeu_pd(color[i], first2);
+                color[i][2] = v[2];
+                channels[i] = _mm256_insertf128_pd(_mm256_castpd128_pd256(first2),
+                                                   _mm_set1_pd(v[2]), 1);
+            }
+            perPixel = false;
+            // Element by element: the weights were just stored so, and a 16-byte load of
+            // them would wait for the four stores to reach the cache.
+            const int32_t* const perColumn = w.edgePerColumn;
+            const __m256d dw = _mm256_mul_pd(
+                _mm256_cvtepi32_pd(_mm_setr_epi32(perColumn[0], perColumn[1], perColumn[2], 0)),
+                _mm256_set1_pd(w.invArea2));
+            const __m256d sum = _mm256_add_pd(
+                _mm256_add_pd(_mm256_mul_pd(_mm256_permute4x64_pd(dw, 0x00), channels[0]),
+                              _mm256_mul_pd(_mm256_permute4x64_pd(dw, 0x55), channels[1])),
+                _mm256_mul_pd(_mm256_permute4x64_pd(dw, 0xaa), channels[2]));
+            // std::clamp's: the bound where beyond it, else the sum (NaN included).
+            const double maxStep = std::numeric_limits<float>::max();
+            const __m256d clamped = _mm256_min_pd(
+                _mm256_set1_pd(maxStep), _mm256_max_pd(_mm256_set1_pd(-maxStep), sum));
+            // Lanes 0, 1, 2 and a copy of 0.
+            _mm_storeu_ps(stepX, _mm_permute_ps(_mm256_cvtpd_ps(clamped), 0x24));
+            return;
+        }
+#endif
         const TriangleSetup unread{};  // SmallWeights read no setup
         setUp(unread, order, c, true);
     }
