@@ -449,7 +449,8 @@ struct SmallWeights {
 #endif
 };
 static_assert(offsetof(SmallWeights, edgePerColumn) == offsetof(SmallWeights, edgeAt) + 12 &&
-                  offsetof(SmallWeights, edgePerRow) == offsetof(SmallWeights, edgePerColumn) + 12 &&
+                  offsetof(SmallWeights, edgePerRow) ==
+                      offsetof(SmallWeights, edgePerColumn) + 12 &&
                   offsetof(SmallWeights, originColumn) == offsetof(SmallWeights, edgePerRow) + 12,
               "SmallWeights::atLanes reads 4 lanes from each edge array");
 
@@ -463,6 +464,31 @@ inline bool gouraudInRange(double v)
 /** Writes Gouraud run [xBegin, xEnd) of the span that starts at spanBegin: channel k of pixel x
 is base[k] + stepX[k] * float(x - spanBegin), base[k] = float(w0 * color[0][k] + w1 * color[1][k]
 + w2 * color[2][k]) from the exact weights (w0, w1, w2) of the span's first sample. */
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+/** storeGouraudRun's base in float lanes (channels 0, 1, 2, 2): the scalar sums, two channels
+per lane pair, in the same order. */
+__attribute__((always_inline)) inline v_float32x4 gouraudBase(const double color[3][3],
+                                                              double w0, double w1, double w2)
+{
+    const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
+    const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) + c * v_load(color[2]);
+    const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
+                           c * v_setall_f64(color[2][2]);
+    return v_cvt_f32(lo, hi);
+}
+#endif
+
+#if CV_AVX2
+/** w0 c0 + w1 c1 + w2 c2 lane by lane, in that order, the weights in lanes 0-2 of `w`. */
+__attribute__((always_inline)) inline __m256d weightedSum(__m256d w, __m256d c0, __m256d c1,
+                                                          __m256d c2)
+{
+    return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_permute4x64_pd(w, 0x00), c0),
+                                       _mm256_mul_pd(_mm256_permute4x64_pd(w, 0x55), c1)),
+                         _mm256_mul_pd(_mm256_permute4x64_pd(w, 0xaa), c2));
+}
+#endif
+
 template <typename T, bool kClaimedRun>
 __attribute__((always_inline)) inline void storeGouraudRun(const double color[3][3],
                                                            const float stepX[4], double w0,
@@ -471,14 +497,8 @@ __attribute__((always_inline)) inline void storeGouraudRun(const double color[3]
 {
 #if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
     if constexpr (std::is_same<T, float>::value) {
-        // The scalar sums below, two channels per lane pair, in the same order.
-        const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
-        const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) +
-                               c * v_load(color[2]);
-        const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
-                               c * v_setall_f64(color[2][2]);
-        storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd, v_cvt_f32(lo, hi),
-                                      v_load(stepX));
+        storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd,
+                                      gouraudBase(color, w0, w1, w2), v_load(stepX));
         return;
     }
 #endif
@@ -556,10 +576,7 @@ struct GouraudShader {
             const __m256d dw = _mm256_mul_pd(
                 _mm256_cvtepi32_pd(_mm_setr_epi32(perColumn[0], perColumn[1], perColumn[2], 0)),
                 _mm256_set1_pd(w.invArea2));
-            const __m256d sum = _mm256_add_pd(
-                _mm256_add_pd(_mm256_mul_pd(_mm256_permute4x64_pd(dw, 0x00), channels[0]),
-                              _mm256_mul_pd(_mm256_permute4x64_pd(dw, 0x55), channels[1])),
-                _mm256_mul_pd(_mm256_permute4x64_pd(dw, 0xaa), channels[2]));
+            const __m256d sum = weightedSum(dw, channels[0], channels[1], channels[2]);
             // std::clamp's: the bound where beyond it, else the sum (NaN included).
             const double maxStep = std::numeric_limits<float>::max();
             const __m256d clamped = _mm256_min_pd(
@@ -655,11 +672,8 @@ struct GouraudShader {
             return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(color[i])),
                                         _mm_set1_pd(color[i][2]), 1);
         };
-        const __m256d sum = _mm256_add_pd(
-            _mm256_add_pd(_mm256_mul_pd(_mm256_permute4x64_pd(w, 0x00), channels(0)),
-                          _mm256_mul_pd(_mm256_permute4x64_pd(w, 0x55), channels(1))),
-            _mm256_mul_pd(_mm256_permute4x64_pd(w, 0xaa), channels(2)));
-        return v_float32x4(_mm256_cvtpd_ps(sum));
+        return v_float32x4(
+            _mm256_cvtpd_ps(weightedSum(w, channels(0), channels(1), channels(2))));
     }
 #endif
 
@@ -685,12 +699,7 @@ struct GouraudShader {
 #endif
         double w0, w1, w2;
         weightsAt(t, spanBegin, y, w0, w1, w2);
-        const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
-        const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) +
-                               c * v_load(color[2]);
-        const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
-                               c * v_setall_f64(color[2][2]);
-        return Pen{v_cvt_f32(lo, hi), v_load(stepX), spanBegin};
+        return Pen{gouraudBase(color, w0, w1, w2), v_load(stepX), spanBegin};
     }
 #endif
 };
