@@ -461,24 +461,13 @@ inline bool gouraudInRange(double v)
     return std::abs(v) <= 1e37;
 }
 
-/** Writes Gouraud run [xBegin, xEnd) of the span that starts at spanBegin: channel k of pixel x
-is base[k] + stepX[k] * float(x - spanBegin), base[k] = float(w0 * color[0][k] + w1 * color[1][k]
-+ w2 * color[2][k]) from the exact weights (w0, w1, w2) of the span's first sample. */
-#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
-/** storeGouraudRun's base in float lanes (channels 0, 1, 2, 2): the scalar sums, two channels
-per lane pair, in the same order. */
-__attribute__((always_inline)) inline v_float32x4 gouraudBase(const double color[3][3],
-                                                              double w0, double w1, double w2)
-{
-    const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
-    const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) + c * v_load(color[2]);
-    const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
-                           c * v_setall_f64(color[2][2]);
-    return v_cvt_f32(lo, hi);
-}
-#endif
-
 #if CV_AVX2
+//! A colour's channels 0, 1, 2, 2 in 4 lanes.
+__attribute__((always_inline)) inline __m256d channelLanes(const double c[3])
+{
+    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(c)), _mm_set1_pd(c[2]), 1);
+}
+
 /** w0 c0 + w1 c1 + w2 c2 lane by lane, in that order, the weights in lanes 0-2 of `w`. */
 __attribute__((always_inline)) inline __m256d weightedSum(__m256d w, __m256d c0, __m256d c1,
                                                           __m256d c2)
@@ -489,19 +478,16 @@ __attribute__((always_inline)) inline __m256d weightedSum(__m256d w, __m256d c0,
 }
 #endif
 
+/** Writes Gouraud run [xBegin, xEnd) of the span that starts at spanBegin: channel k of pixel x
+is base[k] + stepX[k] * float(x - spanBegin), base[k] = float(w0 * color[0][k] + w1 * color[1][k]
++ w2 * color[2][k]) from the exact weights (w0, w1, w2) of the span's first sample. (Float rows
+with 64-bit SIMD: GouraudShader::spanBase and storeFloatPixels, the same values.) */
 template <typename T, bool kClaimedRun>
 __attribute__((always_inline)) inline void storeGouraudRun(const double color[3][3],
                                                            const float stepX[4], double w0,
                                                            double w1, double w2, T* row,
                                                            int spanBegin, int xBegin, int xEnd)
 {
-#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
-    if constexpr (std::is_same<T, float>::value) {
-        storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd,
-                                      gouraudBase(color, w0, w1, w2), v_load(stepX));
-        return;
-    }
-#endif
     float base[3];
     for (int k = 0; k < 3; k++)
         base[k] = float(w0 * color[0][k] + w1 * color[1][k] + w2 * color[2][k]);
@@ -563,11 +549,9 @@ struct GouraudShader {
             __m256d channels[3];
             for (int i = 0; i < 3; i++) {
                 const double* const v = c[order[i]]->val;
-                const __m128d first2 = _mm_loadu_pd(v);
-                _mm_storeu_pd(color[i], first2);
+                channels[i] = channelLanes(v);  // read before the stores, which may alias v
+                _mm_storeu_pd(color[i], _mm256_castpd256_pd128(channels[i]));
                 color[i][2] = v[2];
-                channels[i] = _mm256_insertf128_pd(_mm256_castpd128_pd256(first2),
-                                                   _mm_set1_pd(v[2]), 1);
             }
             perPixel = false;
             // Element by element: the weights were just stored so, and a 16-byte load of
@@ -648,10 +632,9 @@ struct GouraudShader {
             shadePerPixel(t, row, y, xBegin, xEnd);
             return;
         }
-#if CV_AVX2
-        if constexpr (std::is_same<Weights, SmallWeights>::value &&
-                      std::is_same<T, float>::value) {
-            storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd, smallBase(y, spanBegin),
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+        if constexpr (std::is_same<T, float>::value) {
+            storeFloatPixels<kClaimedRun>(row, spanBegin, xBegin, xEnd, spanBase(t, y, spanBegin),
                                           v_load(stepX));
             return;
         }
@@ -661,19 +644,28 @@ struct GouraudShader {
         storeGouraudRun<T, kClaimedRun>(color, stepX, w0, w1, w2, row, spanBegin, xBegin, xEnd);
     }
 
-#if CV_AVX2
-    /** storeGouraudRun's base for a small face's span from spanBegin on row y, channels 0, 1, 2,
-    2 in float: the same sums of the same weights, in 4 lanes. A tiny face's spans are a pixel
-    or two, so this is most of their cost. */
-    __attribute__((always_inline)) v_float32x4 smallBase(int y, int spanBegin) const
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+    /** storeGouraudRun's base for the span from spanBegin on row y, channels 0, 1, 2, 2 in
+    float: the scalar sums in the same order, two channels per lane pair, or for a small face
+    in the AVX2 build all in 4 lanes with its weights (a tiny face's spans are a pixel or two,
+    so this is most of their cost). */
+    __attribute__((always_inline)) v_float32x4 spanBase(const TriangleSetup& t, int y,
+                                                        int spanBegin) const
     {
-        const __m256d w = weights.atLanes(spanBegin, y);
-        auto channels = [&](int i) {
-            return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(color[i])),
-                                        _mm_set1_pd(color[i][2]), 1);
-        };
-        return v_float32x4(
-            _mm256_cvtpd_ps(weightedSum(w, channels(0), channels(1), channels(2))));
+#if CV_AVX2
+        if constexpr (std::is_same<Weights, SmallWeights>::value)
+            return v_float32x4(_mm256_cvtpd_ps(weightedSum(weights.atLanes(spanBegin, y),
+                                                           channelLanes(color[0]),
+                                                           channelLanes(color[1]),
+                                                           channelLanes(color[2]))));
+#endif
+        double w0, w1, w2;
+        weightsAt(t, spanBegin, y, w0, w1, w2);
+        const v_float64x2 a = v_setall_f64(w0), b = v_setall_f64(w1), c = v_setall_f64(w2);
+        const v_float64x2 lo = a * v_load(color[0]) + b * v_load(color[1]) + c * v_load(color[2]);
+        const v_float64x2 hi = a * v_setall_f64(color[0][2]) + b * v_setall_f64(color[1][2]) +
+                               c * v_setall_f64(color[2][2]);
+        return v_cvt_f32(lo, hi);
     }
 #endif
 
@@ -693,13 +685,7 @@ struct GouraudShader {
     bool penFits() const { return !(kMayShadePerPixel && perPixel); }
     __attribute__((always_inline)) Pen pen(const TriangleSetup& t, int y, int spanBegin) const
     {
-#if CV_AVX2
-        if constexpr (std::is_same<Weights, SmallWeights>::value)
-            return Pen{smallBase(y, spanBegin), v_load(stepX), spanBegin};
-#endif
-        double w0, w1, w2;
-        weightsAt(t, spanBegin, y, w0, w1, w2);
-        return Pen{gouraudBase(color, w0, w1, w2), v_load(stepX), spanBegin};
+        return Pen{spanBase(t, y, spanBegin), v_load(stepX), spanBegin};
     }
 #endif
 };
