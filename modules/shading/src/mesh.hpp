@@ -1850,11 +1850,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         if (xEnd - xBegin <= 4 && shader.penFits()) {
                             const auto pen = shader.pen(t, y, xBegin);
                             double* const nearest = depths + size_t(y - y0) * columns;
-                            for (int x = xBegin; x < xEnd; x++)
-                                if (!(nearest[x] < depth)) {
-                                    nearest[x] = depth;
-                                    pen.put(row, x);
-                                }
+                            // Without a branch: where a closed surface's faces overlap, which
+                            // samples take a face is not predictable. A sample that does not
+                            // take it stores into these instead.
+                            double discardedDepth;
+                            float discardedPixel[3];
+                            for (int x = xBegin; x < xEnd; x++) {
+                                const bool takes = !(nearest[x] < depth);
+                                *(takes ? nearest + x : &discardedDepth) = depth;
+                                pen.put(takes ? row + 3 * x : discardedPixel, x);
+                            }
                             return;
                         }
                     }

@@ -320,13 +320,14 @@ struct FlatShader {
     }
 
 #if OPENCV_SHADING_SIMD128
-    /** A span's pixels one at a time (float rows only): put(row, x) stores what shadeRun stores
-    at x. For the spans of a pixel or few whose samples are each depth-tested: no run to find. */
+    /** A span's pixels one at a time (float rows only): put(pixel, x) stores at `pixel` what
+    shadeRun stores at column x. For the spans of a pixel or few whose samples are each
+    depth-tested: no run to find. */
     struct Pen {
         v_float32x4 value;
-        __attribute__((always_inline)) void put(float* row, int x) const
+        __attribute__((always_inline)) void put(float* pixel, int) const
         {
-            storePixel(row + 3 * x, value);
+            storePixel(pixel, value);
         }
     };
     //! Whether pen() serves this face: always.
@@ -676,9 +677,9 @@ struct GouraudShader {
     struct Pen {
         v_float32x4 base, step;
         int spanBegin;
-        __attribute__((always_inline)) void put(float* row, int x) const
+        __attribute__((always_inline)) void put(float* pixel, int x) const
         {
-            storePixel(row + 3 * x, base + step * v_setall_f32(float(x - spanBegin)));
+            storePixel(pixel, base + step * v_setall_f32(float(x - spanBegin)));
         }
     };
     //! Whether pen() serves this face: not where its colours are computed per pixel.
