@@ -1854,7 +1854,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             // samples take a face is not predictable. A sample that does not
                             // take it stores into these instead.
                             double discardedDepth;
-                            float discardedPixel[3];
+                            T discardedPixel[3];
                             for (int x = xBegin; x < xEnd; x++) {
                                 const bool takes = !(nearest[x] < depth);
                                 *(takes ? nearest + x : &discardedDepth) = depth;
