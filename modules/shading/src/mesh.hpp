@@ -1267,7 +1267,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // them.) Only while the band holds few enough faces that their boxes, keys and vertices
     // stay cached: in bigger bands, reading them in depth order (scattered) costs more than
     // drawing the hidden half in face order does. Closed surfaces in face order: the 49,408-
-    // face sphere at 512 x 512 (5,000-7,700 faces a band) 0.81-0.88x the time, the million-face
+    // face sphere at 512 x 512 (4,900-7,800 faces a band) 0.81-0.88x the time, the million-face
     // sphere at 2048 x 2048 0.83-0.93x, the 10,000-face demo (700-2,900) 1.05-1.2x, and the
     // million-face torus of drawMesh3d in painter's order, whose tilted ring hides up to three
     // layers, 1.02-1.07x (history).
