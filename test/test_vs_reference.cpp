@@ -16,6 +16,7 @@
 #include <opencv2/shading.hpp>
 
 #include "reference/shading_reference.hpp"
+#include "test_common.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -1021,6 +1022,95 @@ TEST(ShadingVsReference, DrawMeshNeedlesAmongSmallFacesInFaceOrder)
         }
         EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud))
             << describeMesh(m, "drawMesh", gouraud, CV_32FC3);
+    }
+}
+
+namespace {
+
+// Two layers of a jittered grid of 2 x 2-pixel cells a little beyond the canvas, the second
+// shifted by a fraction of a cell and wound the other way, their faces interleaved in a random
+// order: a closed surface seen with its back faces, whose bands of more than 4,096 faces the
+// library draws in face order, the nearer winding first and then the other's faces not hidden
+// by it (mesh.hpp). Depths: Random, the front layer in [0, 1) and the back one in [0.5, 1.5)
+// (some back faces show); Ties, the front at 1 and the back's vertices at 1 or 2 (faces of equal
+// mean depth meet, whose order decides); Infinite, each vertex either finite or infinite.
+Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths)
+{
+    Mesh m;
+    const double inf = std::numeric_limits<double>::infinity();
+    const int nx = size.width / 2 + 2, ny = size.height / 2 + 2;
+    std::vector<cv::Vec3i> layerFaces[2];
+    for (int layer = 0; layer < 2; layer++) {
+        const int first = (int)m.verts.size();
+        const Point2d shift = layer ? Point2d(0.75, 0.25) : Point2d(0, 0);
+        for (int j = 0; j <= ny; j++)
+            for (int i = 0; i <= nx; i++) {
+                const Point2d jitter(std::round(rng.uniform(-0.4, 0.4) * 4) / 4,
+                                     std::round(rng.uniform(-0.4, 0.4) * 4) / 4);
+                m.verts.push_back(Point2d(2 * i - 2, 2 * j - 2) + shift + jitter);
+                m.colors.push_back(randomColour(rng, 0, 1));
+                double d = 0;
+                if (depths == Depths::Random)
+                    d = layer ? rng.uniform(0.5, 1.5) : rng.uniform(0.0, 1.0);
+                else if (depths == Depths::Ties)
+                    d = layer ? (double)rng.uniform(1, 3) : 1.0;
+                else
+                    d = rng.uniform(0, 4) ? 1.0 + layer : inf;
+                m.depth.push_back(d);
+            }
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++) {
+                const int a = first + j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
+                for (cv::Vec3i f : { cv::Vec3i(a, b, d), cv::Vec3i(a, d, c) }) {
+                    if (layer)
+                        std::swap(f[1], f[2]);
+                    layerFaces[layer].push_back(f);
+                }
+            }
+    }
+    size_t next[2] = { 0, 0 };
+    while (next[0] < layerFaces[0].size() || next[1] < layerFaces[1].size()) {
+        const int layer = next[1] == layerFaces[1].size() ? 0
+                          : next[0] == layerFaces[0].size() ? 1
+                                                            : rng.uniform(0, 2);
+        m.faces.push_back(layerFaces[layer][next[layer]++]);
+    }
+    return m;
+}
+
+}  // namespace
+
+TEST(ShadingVsReference, DrawMeshClosedSurfaceInFaceOrder)
+{
+    cv::RNG rng(scaledSeed(151));
+    // One band of 64 rows (10,240 faces and more), and two, the second partly on the canvas;
+    // every band whole, then in parts.
+    for (const cv::Size size : { cv::Size(160, 64), cv::Size(150, 100) })
+        for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
+            for (bool inParts : { false, true })
+                for (bool gouraud : { false, true }) {
+                    const Mesh m = closedSurfaceMesh(rng, size, depths);
+                    const shading_test::SplitBands split(inParts);
+                    EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud))
+                        << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " depths "
+                        << int(depths) << " canvas " << size << (inParts ? " in parts" : "");
+                }
+    // 8-bit canvases, and render's cleared canvas (a band drawn again on a tie clears again).
+    for (Depths depths : { Depths::Random, Depths::Ties }) {
+        const cv::Size size(160, 64);
+        const Mesh m = closedSurfaceMesh(rng, size, depths);
+        EXPECT_TRUE(meshMatches(m, size, CV_8UC3, false))
+            << describeMesh(m, "drawMesh", false, CV_8UC3) << " depths " << int(depths);
+        const cv::Scalar bg(-1, -0.5, -0.25);
+        cv::Mat img;
+        cv::shading::render(m.verts, m.faces, m.colors, m.depth, img, cv::shading::SHADE_FLAT,
+                            size, bg);
+        const cv::Mat ref =
+            shading_ref::render(m.verts, m.faces, m.colors, m.depth, false, size, bg);
+        const Sentinels s{ bg, bg };
+        EXPECT_TRUE(compareCanvases(img, img, s, ref, meshCoverage(size, m),
+                                    tolerance(CV_32FC3, false)))
+            << describeMesh(m, "render", false, CV_32FC3) << " depths " << int(depths);
     }
 }
 

@@ -564,6 +564,7 @@ struct MeshWorkspace {
     std::vector<double> depths;       //!< per face: its key from its vertices' depths
     std::vector<SampleBox> boxes;     //!< per face; no rows: culled
     std::vector<uint64_t> binned;     //!< per face and band it crosses
+    std::vector<uint8_t> clockwise;   //!< per boxed face: 1 where wound clockwise (y down)
 
     //! Calls after one that needed more than this reallocate instead of holding it.
     static constexpr size_t kKeepBytes = size_t(256) << 20;
@@ -571,7 +572,8 @@ struct MeshWorkspace {
     size_t capacityBytes() const
     {
         return snapped.capacity() * sizeof(FixedPoint) + depths.capacity() * sizeof(double) +
-               boxes.capacity() * sizeof(SampleBox) + binned.capacity() * sizeof(uint64_t);
+               boxes.capacity() * sizeof(SampleBox) + binned.capacity() * sizeof(uint64_t) +
+               clockwise.capacity();
     }
 
     static MeshWorkspace& ofThisThread()
@@ -593,6 +595,7 @@ struct BandWorkspace {
     std::vector<int> keptFaces;      //!< deferred painter's: per band sample, its face
     std::vector<double> bandDepths;   //!< painted in face order: per band sample, its depth
     std::vector<uint64_t> partEntries;  //!< parts of bands: the entries reaching their rows
+    std::vector<int> splitFaces;  //!< closed surfaces in face order: the faces by winding
 
     size_t capacityBytes() const
     {
@@ -600,7 +603,8 @@ struct BandWorkspace {
                (scratch.capacity() + partEntries.capacity()) * sizeof(uint64_t) +
                refineRun.capacity() * sizeof(refineRun[0]) + tile.capacity() +
                zbuffer.capacityBytes() + keptWeights.capacity() * sizeof(float) +
-               keptFaces.capacity() * sizeof(int) + bandDepths.capacity() * sizeof(double);
+               (keptFaces.capacity() + splitFaces.capacity()) * sizeof(int) +
+               bandDepths.capacity() * sizeof(double);
     }
 
     static BandWorkspace& ofThisThread()
@@ -761,6 +765,18 @@ inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
     }
     return narrow;
 }
+
+/** Byte j of of[m]: bit j of m (eight flags from a lane mask, a byte each). */
+struct BitBytes {
+    uint64_t of[256];
+    constexpr BitBytes() : of()
+    {
+        for (int m = 0; m < 256; m++)
+            for (int j = 0; j < 8; j++)
+                of[m] |= uint64_t(m >> j & 1) << (8 * j);
+    }
+};
+constexpr BitBytes kBitBytes;
 
 //! Whether a snapped vertex lies on the narrow grid (both coordinates below 2^28 subpixels, so
 //! invalid ones do not): every box and area quantity of a face of such vertices fits 32-bit lanes.
@@ -1002,6 +1018,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const double* const faceKeys = byFaceDepth ? mesh.faceDepth.data() : depths.data();
     std::vector<SampleBox>& boxes = work.boxes;
     boxes.resize(faceCount);
+    work.clockwise.resize(faceCount);
     // Enough chunks to balance the threads, few enough to bound the per-chunk band tables.
     const int chunkCount = std::min((faceCount + 1023) / 1024, std::max(32, 4 * getNumThreads()));
     const int chunkFaces = chunkCount ? (faceCount + chunkCount - 1) / chunkCount : 0;
@@ -1028,6 +1045,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         const double* const givenKey = mesh.faceDepth.data();
         double* const faceKey = depths.data();
         SampleBox* const faceBox = boxes.data();
+        uint8_t* const faceClockwise = work.clockwise.data();
         double lo = inf, hi = -inf;  // over finite depths
         uint64_t* count = &binCursor[size_t(chunk) * bandCount];
         double* area = &binArea[size_t(chunk) * bandCount];
@@ -1099,6 +1117,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 (double(p[1].x - p[0].x) * double(p[2].y - p[0].y) -
                  double(p[2].x - p[0].x) * double(p[1].y - p[0].y)) *
                 (0.5 / double(kSubpixelOne * kSubpixelOne));
+            faceClockwise[i] = signedArea > 0;
             countFace(box, signedArea);
         };
         int i = chunk * chunkFaces;
@@ -1178,14 +1197,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 const v_float64x4 areaHigh = (v_cvt_f64_high(dx1) * v_cvt_f64_high(dy2) -
                                               v_cvt_f64_high(dx2) * v_cvt_f64_high(dy1)) *
                                              toPixels;
+                const v_float64x4 zeroArea = v256_setzero_f64();
+                const int clockwise = v_signmask(areaLow > zeroArea) |
+                                      v_signmask(areaHigh > zeroArea) << 4;
+                const uint64_t clockwiseBytes = kBitBytes.of[clockwise];
+                std::memcpy(faceClockwise + i, &clockwiseBytes, sizeof(clockwiseBytes));
                 // All eight within the band of the faces before them (a mesh's neighbours
                 // mostly are): countFace's sums, added in a tree (they only estimate costs).
                 const v_int32x8 inRun = v256_setall_s32(runBand);
                 if (drawn == 0xff && v_check_all(((rowBegin >> shift) == inRun) &
                                                  (((rowEnd - one) >> shift) == inRun))) {
-                    const v_float64x4 zeroArea = v256_setzero_f64();
-                    const int clockwise = v_signmask(areaLow > zeroArea) |
-                                          v_signmask(areaHigh > zeroArea) << 4;
                     runCount += 8 + (uint64_t(__builtin_popcount(clockwise)) << 32);
                     runArea += v_reduce_sum(v_abs(areaLow) + v_abs(areaHigh));
                     continue;
@@ -1277,6 +1298,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // faces' count, area and winding.
     struct BandWay {
         bool smallFaces, inFaceOrder, backToFront;
+        //! In face order, a closed surface's: the nearer winding first, then the other's faces
+        //! that the depths drawn so far do not hide.
+        bool nearWindingFirst;
     };
     auto bandWay = [&](int k) {
         const size_t faces = bandStart[k + 1] - bandStart[k];
@@ -1284,13 +1308,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         const double overdraw = bandArea[k] - double(rows) * size.width;
         const size_t windingMinority = std::min(bandClockwise[k], faces - bandClockwise[k]);
         const bool smallFaces = bandArea[k] <= kSmallFaceSamples * double(faces);
-        const bool closedSurface =
-            4 * windingMinority >= faces && smallFaces && faces <= kCachedBandFaces;
+        const bool bothWindings = 4 * windingMinority >= faces && smallFaces;
+        const bool closedSurface = bothWindings && faces <= kCachedBandFaces;
         const bool littleOverdraw = !depthTested && !options.frontToBack &&
                                     overdraw <= kOverdrawPerFacePainted * double(faces) &&
                                     !closedSurface;
         const bool inFaceOrder = littleOverdraw && smallFaces;
-        return BandWay{smallFaces, inFaceOrder, littleOverdraw && !inFaceOrder};
+        return BandWay{smallFaces, inFaceOrder, littleOverdraw && !inFaceOrder,
+                       inFaceOrder && bothWindings && byDepth};
     };
     // Bands drawn in face order read no sort key: where no band sorts, the entries go without
     // one (each face's key quantized and stored costs the million-face grid's binning ~17
@@ -1378,6 +1403,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         std::vector<int> keptFaces = std::move(threadBuffers.keptFaces);
         std::vector<double> bandDepths = std::move(threadBuffers.bandDepths);
         std::vector<uint64_t> partEntries = std::move(threadBuffers.partEntries);
+        std::vector<int> splitFaces = std::move(threadBuffers.splitFaces);
         int rowLeft[64];  // pixels of each band row not yet final
         struct BatchFace {
             TriangleSetup triangle;
@@ -1824,13 +1850,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // neighbours in the arrays too, write the canvas and the depths a few rows at a
                 // time. (Drawing tall bands 16 rows at a time, each slice visiting the band's
                 // faces, took 6-11% longer on the million-face grid.)
-                if (background)
-                    for (int y = y0; y < y1; y++)
-                        fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
-                if (byDepth) {
-                    bandDepths.resize(size_t(y1 - y0) * columns);
-                    std::fill(bandDepths.begin(), bandDepths.end(), inf);
-                }
+                auto clearBand = [&] {
+                    if (background)
+                        for (int y = y0; y < y1; y++)
+                            fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
+                    if (byDepth) {
+                        bandDepths.resize(size_t(y1 - y0) * columns);
+                        std::fill(bandDepths.begin(), bandDepths.end(), inf);
+                    }
+                };
+                clearBand();
                 // A face's span: the samples that take it (all of them without depths).
                 // Its values captured by copy: through references, each span reloaded them
                 // after every store, which may alias them.
@@ -1868,25 +1897,109 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         shader(t, row, y, xBegin, a, b);
                     });
                 };
-                for (size_t next = orderSize; next > 0;) {  // increasing face order
-                    int count = 0;
-                    for (; next > 0 && count < kBatch; next--)
-                        batchFaces[count++] = entryFace(order[next - 1]);
+                // Draws faces[0 .. count) in turn, each span by paintSpanFn.
+                auto paintBatch = [&](const int* faces, int count, const auto& paintSpanFn) {
 #if OPENCV_SHADING_BOX_EIGHT
                     if (boxEight && shaders.smallShadersFit()) {
-                        paintSmallFaces(batchFaces, count, paintSpan);
-                        continue;
+                        paintSmallFaces(faces, count, paintSpanFn);
+                        return;
                     }
 #endif
-                    const int batchSize = prepareBatch(batchFaces, count);
+                    const int batchSize = prepareBatch(faces, count);
                     for (int i = 0; i < batchSize; i++) {
                         const BatchFace& bf = batch[i];
                         const double depth = byDepth ? keyOf[bf.face] : 0.0;
                         walkTriangle(bf.triangle, y0, y1, columns,
                                      [&](int y, int xBegin, int xEnd) {
-                            paintSpan(bf.triangle, bf.shader, depth, y, xBegin, xEnd);
+                            paintSpanFn(bf.triangle, bf.shader, depth, y, xBegin, xEnd);
                         });
                     }
+                };
+                // Draws the faces faceAtIndex(0 .. total) that `keep` keeps, in that order, a
+                // batch at a time; stops early where stop() says so after a batch.
+                auto paintFaces = [&](size_t total, auto&& faceAtIndex, auto&& keep,
+                                      const auto& paintSpanFn, auto&& stop) {
+                    for (size_t j = 0; j < total;) {
+                        int count = 0;
+                        for (; j < total && count < kBatch; j++) {
+                            const int face = faceAtIndex(j);
+                            if (keep(face))
+                                batchFaces[count++] = face;
+                        }
+                        paintBatch(batchFaces, count, paintSpanFn);
+                        if (stop())
+                            return;
+                    }
+                };
+                auto always = [](int) { return true; };
+                auto never = [] { return false; };
+                auto inFaceOrderAt = [&](size_t j) {  // entries are in decreasing face order
+                    return entryFace(order[orderSize - 1 - j]);
+                };
+                if (!way.nearWindingFirst) {
+                    paintFaces(orderSize, inFaceOrderAt, always, paintSpan, never);
+                    continue;
+                }
+                /* A closed surface's band: half of its faces, turned away, are hidden by the
+                other half. Since the nearest face wins each sample whatever the order (among
+                equally near ones the last, which only ties need), the faces of the nearer
+                winding (by mean depth) are drawn first, then each face of the other winding
+                whose box holds a sample no nearer face has taken yet (exact: every sample of a
+                skipped face is already nearer). Where one of those meets a sample of equal
+                depth, the order matters: the band is drawn again, all of it in face order. */
+                splitFaces.resize(orderSize);
+                size_t inClass[2] = {0, 0};
+                double depthSum[2] = {0, 0};
+                const uint8_t* const isClockwise = work.clockwise.data();
+                for (size_t j = 0; j < orderSize; j++) {
+                    // Counterclockwise faces from the list's start, clockwise from its end,
+                    // each in face order.
+                    const int face = inFaceOrderAt(j);
+                    const int c = isClockwise[face];
+                    depthSum[c] += keyOf[face];
+                    splitFaces[c ? orderSize - 1 - inClass[1] : inClass[0]] = face;
+                    inClass[c]++;
+                }
+                // Comparing the means (false where a sum is not finite: any order is exact).
+                const int nearClass =
+                    depthSum[1] * double(inClass[0]) < depthSum[0] * double(inClass[1]) ? 1 : 0;
+                auto classFaceAt = [&](int c) {
+                    const int* const faces = splitFaces.data();
+                    const size_t last = orderSize - 1;
+                    return [faces, last, c](size_t j) { return faces[c ? last - j : j]; };
+                };
+                paintFaces(inClass[nearClass], classFaceAt(nearClass), always, paintSpan, never);
+                const double* const nearest = bandDepths.data();
+                // Whether every sample of face's box (in the band) is nearer than its depth.
+                auto hiddenByNearer = [&](int face) {
+                    const SampleBox& box = faceBox[face];
+                    const double depth = keyOf[face];
+                    const int r0 = std::max(box.rowBegin, y0), r1 = std::min(box.rowEnd, y1);
+                    for (int y = r0; y < r1; y++) {
+                        const double* const row = nearest + size_t(y - y0) * columns;
+                        for (int x = box.colFirst; x <= box.colLast; x++)
+                            if (!(row[x] < depth))
+                                return false;
+                    }
+                    return true;
+                };
+                bool tied = false;
+                auto paintSpanTieChecked = [paintSpan, &tied, nearest, y0, columns](
+                                               const TriangleSetup& t, const auto& shader,
+                                               double depth, int y, int xBegin, int xEnd) {
+                    const double* const row = nearest + size_t(y - y0) * columns;
+                    bool tie = false;
+                    for (int x = xBegin; x < xEnd; x++)
+                        tie |= row[x] == depth;
+                    tied |= tie;
+                    paintSpan(t, shader, depth, y, xBegin, xEnd);
+                };
+                paintFaces(inClass[1 - nearClass], classFaceAt(1 - nearClass),
+                           [&](int face) { return !hiddenByNearer(face); }, paintSpanTieChecked,
+                           [&] { return tied; });
+                if (tied) {
+                    clearBand();
+                    paintFaces(orderSize, inFaceOrderAt, always, paintSpan, never);
                 }
                 continue;
             }
@@ -2065,7 +2178,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                       std::move(refineRun), std::move(tile),
                                       std::move(zbuffer), std::move(keptWeights),
                                       std::move(keptFaces), std::move(bandDepths),
-                                      std::move(partEntries)};
+                                      std::move(partEntries), std::move(splitFaces)};
         if (threadBuffers.capacityBytes() > MeshWorkspace::kKeepBytes)
             threadBuffers = BandWorkspace();
 #if OPENCV_SHADING_STAGE_TIMES
