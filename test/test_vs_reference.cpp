@@ -981,6 +981,70 @@ TEST(ShadingVsReference, DrawMeshSmallFacesInFaceOrder)
             }
 }
 
+namespace {
+
+// `layers` jittered grids of cells about 2.7 px wide, each face with its own vertices (corners
+// on a quarter-pixel grid, +-0.5 px from the cell's), reaching 3 px past every edge of the
+// canvas: faces of about 3.6 samples, every box within 4 x 4 samples, the million-face grid's
+// kind. Layers are interleaved face by face, so later faces overlap earlier ones.
+Mesh tinyGridMesh(cv::RNG& rng, cv::Size size, int layers, Depths depths)
+{
+    Mesh m;
+    const double inf = std::numeric_limits<double>::infinity();
+    const double cell = 2.7;
+    const int nx = int((size.width + 6) / cell), ny = int((size.height + 6) / cell);
+    auto jitter = [&] { return std::round(rng.uniform(-0.5, 0.5) * 4) / 4; };
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            for (int layer = 0; layer < layers; layer++)
+                for (int half = 0; half < 2; half++) {
+                    const double x = -3 + i * cell + 0.9 * layer, y = -3 + j * cell + 0.6 * layer;
+                    const Point2d corner[4] = {{x, y}, {x + cell, y}, {x + cell, y + cell},
+                                               {x, y + cell}};
+                    const int pick[2][3] = {{0, 1, 2}, {0, 2, 3}};
+                    const double faceDepth =
+                        depths == Depths::Ties       ? double(rng.uniform(0, 3))
+                        : depths == Depths::Infinite ? (rng.uniform(0, 3) ? 1.0 : inf)
+                                                     : rng.uniform(-1.0, 1.0);
+                    const int first = int(m.verts.size());
+                    for (int k = 0; k < 3; k++) {
+                        const Point2d& q = corner[pick[half][k]];
+                        m.verts.push_back(Point2d(q.x + jitter(), q.y + jitter()));
+                        m.colors.push_back(randomColour(rng, 0, 1));
+                        if (depths != Depths::None)
+                            m.depth.push_back(depths == Depths::Random
+                                                  ? faceDepth + rng.uniform(-0.1, 0.1)
+                                                  : faceDepth);
+                    }
+                    m.faces.push_back(cv::Vec3i(first, first + 1, first + 2));
+                }
+    return m;
+}
+
+}  // namespace
+
+// Bands in face order whose faces average at most 5 samples take their tiny faces' samples from
+// a 4 x 4 block test of 8 faces at once (mesh.hpp: paintTinyBlocks; flat, float canvases): one
+// and two layers of tiny faces, with random, tied and infinite depths, on a canvas of two bands
+// (faces across the band edge) and a wide one (faces past its right edge), in flat (the blocks)
+// and Gouraud (the walk), float and 8-bit.
+TEST(ShadingVsReference, DrawMeshTinyFacesInFaceOrder)
+{
+    cv::RNG rng(scaledSeed(149));
+    for (const cv::Size size : { cv::Size(97, 70), cv::Size(2049, 21) })
+        for (int layers : { 1, 2 })
+            for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
+                for (bool gouraud : { false, true })
+                    for (int type : { CV_32FC3, CV_8UC3 }) {
+                        if (type == CV_8UC3 && (gouraud || layers == 1))
+                            continue;
+                        const Mesh m = tinyGridMesh(rng, size, layers, depths);
+                        EXPECT_TRUE(meshMatches(m, size, type, gouraud))
+                            << describeMesh(m, "drawMesh", gouraud, type) << " depths "
+                            << int(depths) << " layers " << layers << " canvas " << size;
+                    }
+}
+
 // The tiny faces of a band drawn in face order are set up 8 at a time, without sorting their
 // vertices, where they fit one vector of columns (mesh.hpp, raster.hpp: smallEdgesEight); the
 // rest one at a time. Here: small faces wound both ways (a minority reversed, so the band is

@@ -461,6 +461,51 @@ inline int smallEdgesEight(const v_int32x8 x[3], const v_int32x8 y[3],
     return v_signmask(v_reinterpret_as_f32(fits & (negative | positive)));
 }
 
+//! All ones in the lanes of faces whose samples, `rows` by `columns`, fit 4 x 4 (see below).
+inline v_int32x8 tinyBlockFitsEight(const v_int32x8& rows, const v_int32x8& columns)
+{
+    const v_int32x8 zero = v256_setzero_s32(), five = v256_setall_s32(5);
+    return (rows > zero) & (rows < five) & (columns > zero) & (columns < five);
+}
+
+/** The samples of 8 small faces (smallEdgesEight's lanes) that lie within 4 x 4 samples from
+each one's first column and row: lane i's bit 4 r + c is sample (firstColumn + c, firstRow + r)
+of face i, tested as walkSmallRows tests it (every G > 0), so the same samples. rows and columns:
+how many of each the face's sample box holds where it may be drawn (within the band and the
+canvas); fits: tinyBlockFitsEight's lanes. Lanes that do not fit get 0. About 20 instructions a
+face, where a walk of its rows takes about 50. */
+inline v_int32x8 tinyBlockSamplesEight(const int32_t* const at0[3], const int32_t* const perColumn[3],
+                                       const int32_t* const perRow[3], const v_int32x8& rows,
+                                       const v_int32x8& columns, const v_int32x8& fits)
+{
+    const v_int32x8 zero = v256_setzero_s32(), one = v256_setall_s32(1);
+    // Bits 4 r + c for r < rows and c < columns (a shift of 32 or more gives 0).
+    const v_int32x8 inRows =
+        v_int32x8(_mm256_sllv_epi32(one.val, v_shl<2>(rows).val)) - one;
+    const v_int32x8 inRow = v_int32x8(_mm256_sllv_epi32(one.val, columns.val)) - one;
+    const v_int32x8 inBox =
+        inRows & (inRow | v_shl<4>(inRow) | v_shl<8>(inRow) | v_shl<12>(inRow)) & fits;
+    v_int32x8 rowAt[3], column[3], row[3];
+    for (int e = 0; e < 3; e++) {
+        rowAt[e] = v256_load(at0[e]);
+        column[e] = v256_load(perColumn[e]);
+        row[e] = v256_load(perRow[e]);
+    }
+    v_int32x8 covered = zero;
+    for (int r = 0; r < 4; r++) {
+        v_int32x8 at[3] = {rowAt[0], rowAt[1], rowAt[2]};
+        for (int c = 0; c < 4; c++) {
+            covered = covered | ((at[0] > zero) & (at[1] > zero) & (at[2] > zero) &
+                                 v256_setall_s32(1 << (4 * r + c)));
+            for (int e = 0; e < 3; e++)
+                at[e] += column[e];
+        }
+        for (int e = 0; e < 3; e++)
+            rowAt[e] += row[e];
+    }
+    return covered & inBox;
+}
+
 /** ExactWeights' integers for 8 small faces at once (those smallEdgesEight reports small, whose
 extents keep every value below 2^26; the other lanes are not meaningful): the vertices in the
 canonical order (top, mid, bottom, sorted as setupTriangle sorts them) as indices 0-2 into the
