@@ -1018,6 +1018,35 @@ Mesh tinyGridMesh(cv::RNG& rng, cv::Size size, int layers, Depths depths)
                     }
                     m.faces.push_back(cv::Vec3i(first, first + 1, first + 2));
                 }
+    // Among them, faces whose sample boxes the canvas clips to a few samples though they reach
+    // 3,000 px past it (slivers from the left, needles from above and below): not tiny, walked
+    // (areas of about 500 px, which leave the bands' means under 5 samples a face).
+    for (int k = 0; k < 12; k++) {
+        const double u = rng.uniform(0.0, 1.0), far = 3000;
+        Point2d p[3];
+        if (k % 3 == 0) {  // 0.3 px tall, from x = -3000 to the first 2 columns
+            const double y = rng.uniform(1.0, size.height - 2.0) + 0.1;
+            p[0] = Point2d(-far, y), p[1] = Point2d(1.5 + u, y + 0.15), p[2] = Point2d(1 + u, y + 0.3);
+        } else {  // 0.4 px wide, from 3000 px above (or below) to the first (last) rows
+            const double x = rng.uniform(1.0, size.width - 2.0) + 0.1;
+            const bool above = k % 3 == 1;
+            const double end = above ? 1.5 + u : size.height - 2.5 - u;
+            p[0] = Point2d(x, above ? -far : size.height + far), p[1] = Point2d(x + 0.4, end);
+            p[2] = Point2d(x + 0.2, end + (above ? 0.5 : -0.5));
+        }
+        if ((p[1] - p[0]).cross(p[2] - p[0]) < 0)
+            std::swap(p[1], p[2]);
+        const int first = int(m.verts.size());
+        for (int j = 0; j < 3; j++) {
+            m.verts.push_back(p[j]);
+            m.colors.push_back(randomColour(rng, 0, 1));
+            if (depths != Depths::None)
+                m.depth.push_back(depths == Depths::Infinite ? 1.0 : rng.uniform(-1.0, 1.0));
+        }
+        // Placed among the grid's faces, where a batch of them is mostly tiny.
+        const size_t at = size_t(rng.uniform(0, int(m.faces.size())));
+        m.faces.insert(m.faces.begin() + long(at), cv::Vec3i(first, first + 1, first + 2));
+    }
     return m;
 }
 
@@ -1026,8 +1055,9 @@ Mesh tinyGridMesh(cv::RNG& rng, cv::Size size, int layers, Depths depths)
 // Bands in face order whose faces average at most 5 samples take their tiny faces' samples from
 // a 4 x 4 block test of 8 faces at once (mesh.hpp: paintTinyBlocks; flat, float canvases): one
 // and two layers of tiny faces, with random, tied and infinite depths, on a canvas of two bands
-// (faces across the band edge) and a wide one (faces past its right edge), in flat (the blocks)
-// and Gouraud (the walk), float and 8-bit.
+// (faces across the band edge) and a wide one (faces past its right edge), with a few huge faces
+// that the canvas clips to tiny boxes among them, in flat (the blocks) and Gouraud (the walk),
+// float and 8-bit.
 TEST(ShadingVsReference, DrawMeshTinyFacesInFaceOrder)
 {
     cv::RNG rng(scaledSeed(149));

@@ -5,7 +5,8 @@
 // The canvas is cut into bands of rows, rendered in parallel. Each band orders its own faces and
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw
 // is painted: small faces in face order, unsorted, each sample keeping the nearest face so far
-// (the later on a tie), bigger ones sorted, back to front; a closed surface's band of many small
+// (the later on a tie; tiny flat faces' samples found 8 faces at a time in 4 x 4 blocks), bigger
+// ones sorted, back to front; a closed surface's band of many small
 // faces also in face order, but its nearer winding first and the other's faces only where not
 // yet hidden. One with more overdraw (or a closed surface's band of few faces) is sorted and
 // built front to back, where a coverage bit mask keeps the first (frontmost) write of each pixel:
@@ -1693,33 +1694,31 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 walkSmallRows<1>(begin, end, sf.firstColumn[i], onCanvas, faceAt0, faceColumn,
                                  faceRow, spanFn);
             };
-            /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat) whose
-            sample boxes all lie within 4 x 4 samples (a million-face grid's): their samples from
-            one block test of 8 faces at once (tinyBlockSamplesEight), then each sample tested
-            and stored as paintSpan's tiny spans do, with no walk of rows and no spans: about 60
-            instructions a face fewer on biggrid2048. False, having drawn nothing, where a box
-            is bigger. */
-            auto paintTinyBlocks = [&](const int* faces, int count) __attribute__((noinline)) {
+            /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat), set up in
+            sf, all small and within 4 x 4 samples in the band (a million-face grid's): their
+            samples from one block test of 8 faces at once (tinyBlockSamplesEight), then each
+            sample tested and stored as paintSpan's tiny spans do, with no walk of rows and no
+            spans: about 60 instructions a face fewer on biggrid2048. False, having drawn
+            nothing, where a face is not small (a zero area, or a big face that the canvas clips
+            to a small box) or its box is bigger. */
+            auto paintTinyBlocks = [&](const int* faces, int count,
+                                       const SmallFaces& sf) __attribute__((noinline)) {
                 constexpr bool kTinyBlocks = std::is_same<T, float>::value &&
                                              HasPen<SmallShader>::value &&
                                              !SmallShader::kReadsWeights;
                 if constexpr (!kTinyBlocks) {
-                    (void)faces, (void)count;
+                    (void)faces, (void)count, (void)sf;
                     return false;
                 } else {
-                    // Within these a face is small (smallEdgesEight) unless its area is 0.
-                    for (int i = 0; i < count; i++) {
-                        const SampleBox& box = faceBox[faces[i]];
-                        if (box.colLast - box.colFirst > 3 || box.rowEnd - box.rowBegin > 4)
-                            return false;
-                    }
-                    SmallFaces sf;
-                    setUpSmallFaces(faces, count, sf, false);
+                    if (sf.small != uint32_t(rowsBelow(count)))
+                        return false;
                     alignas(32) int32_t columnCount[kBatch], rowCount[kBatch];
                     for (int i = 0; i < count; i++) {
                         const SampleBox& box = faceBox[faces[i]];
                         columnCount[i] = box.colLast - box.colFirst + 1;
                         rowCount[i] = sf.endRow[i] - sf.firstRow[i];  // within the band
+                        if (columnCount[i] > 4 || rowCount[i] > 4)
+                            return false;
                     }
                     for (int i = count; i < ((count + 7) & ~7); i++)
                         columnCount[i] = rowCount[i] = 0;
@@ -1752,9 +1751,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     }
                     const TriangleSetup unread{};  // the shader reads no setup
                     double* const nearestDepths = bandDepths.data();
-                    // Faces of zero area (not small) draw nothing.
-                    for (uint32_t left = sf.small; left; left &= left - 1) {
-                        const int i = __builtin_ctz(left);
+                    for (int i = 0; i < count; i++) {
                         const double depth = keyOf[faces[i]];
                         double* const nearestAt = nearestDepths + nearestIndex[i];
                         const int firstColumn = sf.firstColumn[i];
@@ -1786,11 +1783,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             smallWeightsEight they gain 20%.) */
             auto paintSmallFaces = [&](const int* faces, int count,
                                        const auto& paintSpanGiven) __attribute__((noinline)) {
-                if (tinyBlocksBand && paintTinyBlocks(faces, count))
-                    return;
                 const auto paintSpan = paintSpanGiven;  // a copy kept in registers
                 SmallFaces sf;
                 setUpSmallFaces(faces, count, sf, false);
+                if (tinyBlocksBand && paintTinyBlocks(faces, count, sf))
+                    return;
                 const TriangleSetup unread{};  // the shader reads no setup
                 for (int i = 0; i < count; i++) {
                     const int face = faces[i];
