@@ -1075,6 +1075,45 @@ TEST(ShadingVsReference, DrawMeshTinyFacesInFaceOrder)
                     }
 }
 
+// render() of bands drawn in face order with depths paints the background after the faces,
+// where no face took the sample (mesh.hpp: kUntouchedDepth, paintUntouched): tiny faces (the
+// block test), small ones (the pen) and bigger ones (runs), one and two layers, with a fifth of
+// the faces left out (holes of single cells and runs of them, background between faces),
+// random, tied and infinite depths (a face at +inf still takes its samples), on two bands and on
+// a wide canvas; each pixel as the reference draws it, and the background exactly bg elsewhere.
+TEST(ShadingVsReference, RenderFaceOrderBandsPaintTheBackgroundLast)
+{
+    cv::RNG rng(scaledSeed(157));
+    const cv::Scalar bg(-1, -0.5, -0.25);  // no face colour; distinct per channel
+    auto withHoles = [&](const Mesh& full) {
+        Mesh m = full;
+        m.faces.clear();
+        for (size_t f = 0; f < full.faces.size(); f++)
+            if ((f / 7) % 5 != 0 || rng.uniform(0, 2))  // runs of 7 faces, half of them gone
+                m.faces.push_back(full.faces[f]);
+        return m;
+    };
+    for (const cv::Size size : { cv::Size(97, 70), cv::Size(2049, 21) })
+        for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
+            for (int kind = 0; kind < 3; kind++)
+                for (bool gouraud : { false, true }) {
+                    const Mesh m = withHoles(kind == 2 ? smallFacesMesh(rng, size,
+                                                                        size.area() / 8, depths)
+                                                       : tinyGridMesh(rng, size, kind + 1, depths));
+                    const int shade =
+                        gouraud ? cv::shading::SHADE_GOURAUD : cv::shading::SHADE_FLAT;
+                    cv::Mat img;
+                    cv::shading::render(m.verts, m.faces, m.colors, m.depth, img, shade, size, bg);
+                    const cv::Mat ref =
+                        shading_ref::render(m.verts, m.faces, m.colors, m.depth, gouraud, size, bg);
+                    const Sentinels s{ bg, bg };
+                    EXPECT_TRUE(compareCanvases(img, img, s, ref, meshCoverage(size, m),
+                                                tolerance(CV_32FC3, gouraud)))
+                        << describeMesh(m, "render", gouraud, CV_32FC3) << " depths "
+                        << int(depths) << " kind " << kind << " canvas " << size;
+                }
+}
+
 // The tiny faces of a band drawn in face order are set up 8 at a time, without sorting their
 // vertices, where they fit one vector of columns (mesh.hpp, raster.hpp: smallEdgesEight); the
 // rest one at a time. Here: small faces wound both ways (a minority reversed, so the band is
