@@ -252,8 +252,8 @@ TEST(ShadingMesh, EqualsSequentialPaintersForAnyThreadCount)
 // Gouraud sums w0 c0 + w1 c1 + w2 c2 in the vertices' canonical order (top, mid, bottom), so that
 // a face's pixels never depend on the path that draws it. Tiny faces of a mesh are set up eight
 // at a time (AVX2 build); here each is compared with the same face drawn alone, bit for bit, in
-// bands drawn in face order (one winding) and front to back (both windings, as a closed
-// surface's). Colours linear in x or y, zero at a span's first column or along a row, make the
+// bands drawn in face order (one winding; with depths, the 4 x 4 block test) and front to back
+// (both windings, as a closed surface's). Colours linear in x or y, zero at a span's first column or along a row, make the
 // sums cancel to rounding noise there, which any other order of the sums changes; axis-aligned
 // cells give vertices of equal y, whose order the sort's tie-break decides. Colours beyond
 // +-1e37 are computed per pixel, never stepped in float, which could overflow.
@@ -302,12 +302,22 @@ TEST(ShadingMesh, TinyGouraudFacesEqualFacesDrawnAlone)
                 const std::vector<Vec3d> c = {colors[f[0]], colors[f[1]], colors[f[2]]};
                 shading::gouraud(expected, v, c);
             }
-            Mat canvas(size, CV_32FC3, Scalar::all(0));
-            shading::drawMesh(canvas, verts, faces, colors, noArray(), shading::SHADE_GOURAUD);
-            EXPECT_EQ(std::memcmp(canvas.data, expected.data,
-                                  canvas.total() * canvas.elemSize()),
-                      0)
-                << "both windings " << bothWindings << ", huge colours " << huge;
+            // Without depths, and with them (the faces do not overlap, so any order draws the
+            // same image), which send one winding's bands to the 4 x 4 block test.
+            std::vector<double> depth;
+            for (size_t v = 0; v < verts.size(); v++)
+                depth.push_back(rng.uniform(0.0, 1.0));
+            for (bool withDepth : {false, true}) {
+                Mat canvas(size, CV_32FC3, Scalar::all(0));
+                shading::drawMesh(canvas, verts, faces, colors,
+                                  withDepth ? _InputArray(depth) : _InputArray(noArray()),
+                                  shading::SHADE_GOURAUD);
+                EXPECT_EQ(std::memcmp(canvas.data, expected.data,
+                                      canvas.total() * canvas.elemSize()),
+                          0)
+                    << "both windings " << bothWindings << ", huge colours " << huge
+                    << ", depths " << withDepth;
+            }
         }
     }
 }

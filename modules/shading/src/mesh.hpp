@@ -1740,19 +1740,20 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 walkSmallRows<1>(begin, end, sf.firstColumn[i], onCanvas, faceAt0, faceColumn,
                                  faceRow, spanFn);
             };
-            /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat), all small
-            and within 4 x 4 samples in the band (a million-face grid's): their samples from one
-            block test of 8 faces at once (tinyBlockSamplesEight), then each sample tested and
-            stored as paintSpan's tiny spans do, with no walk of rows and no spans: about 60
-            instructions a face fewer on biggrid2048. False, having drawn nothing, where a box
-            is bigger or a face is not small (a zero area, or a big face that the canvas clips
-            to a small box). Called before paintSmallFaces's own setup, which it repeats: with
+            /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat or
+            Gouraud, float canvas), all small and within 4 x 4 samples in the band (a
+            million-face grid's): their samples from one block test of 8 faces at once
+            (tinyBlockSamplesEight), then each sample tested and stored as paintSpan's tiny spans
+            do, with no walk of rows and no spans: about 60 instructions a face fewer on
+            biggrid2048. A Gouraud face's pen starts at each row's first sample, the span's
+            first sample in the walk, so the colours are the walk's. False, having drawn
+            nothing, where a box is bigger, a face is not small (a zero area, or a big face that
+            the canvas clips to a small box) or a shader has no pen. Called before paintSmallFaces's own setup, which it repeats: with
             the setup shared, the spheres' walk in paintSmallFaces took 5-6% longer (the same
             instructions; the code's layout). */
             auto paintTinyBlocks = [&](const int* faces, int count) __attribute__((noinline)) {
-                constexpr bool kTinyBlocks = std::is_same<T, float>::value &&
-                                             HasPen<SmallShader>::value &&
-                                             !SmallShader::kReadsWeights;
+                constexpr bool kTinyBlocks =
+                    std::is_same<T, float>::value && HasPen<SmallShader>::value;
                 if constexpr (!kTinyBlocks) {
                     (void)faces, (void)count;
                     return false;
@@ -1769,6 +1770,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     setUpSmallFaces(faces, count, sf, false);
                     if (sf.small != uint32_t(rowsBelow(count)))
                         return false;
+                    for (int i = 0; i < count; i++)
+                        if (!sf.shader(i).penFits())
+                            return false;
                     for (int i = count; i < ((count + 7) & ~7); i++)
                         columnCount[i] = rowCount[i] = 0;
                     alignas(32) int32_t block[kBatch];         // bits 4 r + c: the samples
@@ -1804,22 +1808,36 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         const double depth = keyOf[faces[i]];
                         double* const nearestAt = nearestDepths + nearestIndex[i];
                         const int firstColumn = sf.firstColumn[i];
-                        const auto pen = sf.shader(i).pen(unread, sf.firstRow[i], firstColumn);
                         uchar* const pixelAt = pixels + size_t(sf.firstRow[i]) * rowStep +
                                                size_t(firstColumn) * 3 * sizeof(T);
                         // Without a branch on the test: a sample that does not take the face
                         // stores into these. (Row by row, a run at a time, cost more.)
                         double discardedDepth;
                         T discardedPixel[3];
-                        for (uint32_t samples = uint32_t(block[i]); samples;
-                             samples &= samples - 1) {
-                            const int bit = __builtin_ctz(samples);
-                            double* const nearest = nearestAt + depthOffset[bit];
-                            const bool takes = !(*nearest < depth);
-                            *(takes ? nearest : &discardedDepth) = depth;
-                            pen.put(takes ? reinterpret_cast<T*>(pixelAt + pixelOffset[bit])
-                                          : discardedPixel,
-                                    firstColumn + (bit & 3));
+                        auto putSamples = [&](uint32_t samples, const auto& pen) {
+                            for (; samples; samples &= samples - 1) {
+                                const int bit = __builtin_ctz(samples);
+                                double* const nearest = nearestAt + depthOffset[bit];
+                                const bool takes = !(*nearest < depth);
+                                *(takes ? nearest : &discardedDepth) = depth;
+                                pen.put(takes ? reinterpret_cast<T*>(pixelAt + pixelOffset[bit])
+                                              : discardedPixel,
+                                        firstColumn + (bit & 3));
+                            }
+                        };
+                        if constexpr (!SmallShader::kReadsWeights) {  // one colour
+                            putSamples(uint32_t(block[i]),
+                                       sf.shader(i).pen(unread, sf.firstRow[i], firstColumn));
+                        } else {
+                            // A pen per row, from the row's first sample (bits 4 r to 4 r + 3).
+                            for (uint32_t rows = uint32_t(block[i]); rows;) {
+                                const int first = __builtin_ctz(rows);
+                                const uint32_t inRow = rows & (0xfu << (first & ~3));
+                                putSamples(inRow, sf.shader(i).pen(unread,
+                                                                   sf.firstRow[i] + (first >> 2),
+                                                                   firstColumn + (first & 3)));
+                                rows &= ~inRow;
+                            }
                         }
                     }
                     return true;
