@@ -3,7 +3,7 @@
 // The front-to-back bands' coverage bits (internal): the occlusion test CoverageBits::finalRows
 // against a plain per-pixel record of what the claims marked final, with claims and tests
 // interleaved at random, so that the words the test remembers as final (for big boxes) are
-// reused after the coverage has grown.
+// reused after the coverage has grown; and the background that face-order bands paint last.
 #include "../modules/shading/src/mesh.hpp"
 
 #include <gtest/gtest.h>
@@ -11,7 +11,9 @@
 #include <opencv2/core.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 using cv::shading::detail::CoverageBits;
@@ -117,3 +119,47 @@ TEST(CoverageBits, FinalRowsOfHiddenBoxAfterGrowth)
 }
 
 }  // namespace
+
+// A face-order band paints the background after its faces, where a sample's depth is still
+// kUntouchedDepth (mesh.hpp: paintUntouched, 4 depths a step): every pattern of taken and
+// untouched samples in rows of 1 to 40 (runs starting and ending at every position within a
+// step, whole rows of each), float and 8-bit rows, against a per-pixel loop; a taken sample at
+// +inf or -inf is not untouched.
+TEST(FaceOrderBackground, PaintsExactlyTheUntouchedSamples)
+{
+    using cv::shading::detail::kUntouchedDepth;
+    using cv::shading::detail::paintUntouched;
+    cv::RNG rng(7);
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int trial = 0; trial < 4000; trial++) {
+        const int columns = 1 + trial % 40;
+        std::vector<double> depths(columns);
+        const int kind = trial / 40 % 4;  // random, runs, all untouched, all taken
+        bool untouched = rng.uniform(0, 2) != 0;
+        for (int x = 0; x < columns; x++) {
+            if (kind == 0)
+                untouched = rng.uniform(0, 2) != 0;
+            else if (kind == 1 && rng.uniform(0, 5) == 0)
+                untouched = !untouched;
+            const bool u = kind == 2 || (kind != 3 && untouched);
+            const double taken[4] = {rng.uniform(-1.0, 1.0), inf, -inf, 0.0};
+            depths[x] = u ? kUntouchedDepth : taken[rng.uniform(0, 4)];
+        }
+        const float colour[3] = {0.25f, -0.5f, 2.0f};
+        const uchar bytes[3] = {7, 200, 31};
+        std::vector<float> row(3 * columns + 1, -9.0f);  // one float past the row: untouched
+        std::vector<uchar> rowBytes(3 * columns + 1, 99);
+        paintUntouched(row.data(), depths.data(), columns, colour);
+        paintUntouched(rowBytes.data(), depths.data(), columns, bytes);
+        for (int x = 0; x < columns; x++)
+            for (int k = 0; k < 3; k++) {
+                const bool u = std::isnan(depths[x]);
+                ASSERT_EQ(row[3 * x + k], u ? colour[k] : -9.0f)
+                    << "float row of " << columns << ", sample " << x << ", trial " << trial;
+                ASSERT_EQ(rowBytes[3 * x + k], u ? bytes[k] : 99)
+                    << "8-bit row of " << columns << ", sample " << x << ", trial " << trial;
+            }
+        EXPECT_EQ(row[3 * columns], -9.0f);
+        EXPECT_EQ(rowBytes[3 * columns], 99);
+    }
+}
