@@ -1079,8 +1079,10 @@ TEST(ShadingVsReference, DrawMeshTinyFacesInFaceOrder)
 // where no face took the sample (mesh.hpp: kUntouchedDepth, paintUntouched): tiny faces (the
 // block test), small ones (the pen) and bigger ones (runs), one and two layers, with a fifth of
 // the faces left out (holes of single cells and runs of them, background between faces),
-// random, tied and infinite depths (a face at +inf still takes its samples), on two bands and on
-// a wide canvas; each pixel as the reference draws it, and the background exactly bg elsewhere.
+// random, tied and infinite depths (a face at +inf still takes its samples), on a small canvas
+// (whose bands fill the background first) and on a wide one whose first band's rows hold more
+// than 1 MB (background last); each pixel as the reference draws it, and the background exactly
+// bg elsewhere.
 TEST(ShadingVsReference, RenderFaceOrderBandsPaintTheBackgroundLast)
 {
     cv::RNG rng(scaledSeed(157));
@@ -1093,7 +1095,7 @@ TEST(ShadingVsReference, RenderFaceOrderBandsPaintTheBackgroundLast)
                 m.faces.push_back(full.faces[f]);
         return m;
     };
-    for (const cv::Size size : { cv::Size(97, 70), cv::Size(2049, 21) })
+    for (const cv::Size size : { cv::Size(97, 70), cv::Size(1400, 70) })
         for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
             for (int kind = 0; kind < 3; kind++)
                 for (bool gouraud : { false, true }) {

@@ -2017,10 +2017,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // faces, took 6-11% longer on the million-face grid.)
                 // With depths, the background goes where no face took the sample, after the
                 // faces (paintBackground): a covered pixel is then written once, by its face
-                // (biggrid2048 0.94-0.98x the time in flat and Gouraud). Not on a closed surface's band, whose
-                // rings cross the band in curves: its faces' stores then find the canvas lines
-                // out of cache (bigsphere2048 1.05-1.10x); the background's fill brings them in.
-                const bool backgroundLast = background && byDepth && !way.nearWindingFirst;
+                // (biggrid2048 0.94-0.98x the time in flat and Gouraud), where the band's rows
+                // hold more than 1 MB, which a core's cache does not keep from the fill to the
+                // faces (grid512's 384 KB: 1.02-1.06x in Gouraud with the background last). Not
+                // on a closed surface's band, whose rings cross the band in curves: its faces'
+                // stores then find the canvas lines out of cache (bigsphere2048 1.05-1.10x);
+                // the background's fill brings them in.
+                constexpr size_t kBackgroundLastBytes = size_t(1) << 20;
+                const bool backgroundLast = background && byDepth && !way.nearWindingFirst &&
+                                            size_t(y1 - y0) * columns * 3 * sizeof(T) >
+                                                kBackgroundLastBytes;
                 auto clearBand = [&] {
                     if (background && !backgroundLast)
                         for (int y = y0; y < y1; y++)
