@@ -482,8 +482,8 @@ inline void paintUntouched(T* row, const double* depths, int columns, const T co
 }
 
 /** The depth test that draws the painter's image in face order: the samples of [xBegin, xEnd)
-whose nearest depth so far (`nearest`, kUntouchedDepth where none) is not nearer than `depth` take it, and
-`fn(a, b)` is called for each maximal run [a, b) of them. A face drawn later wins a tie, as the
+whose nearest depth so far (`nearest`, kUntouchedDepth where none) is not nearer than `depth`
+take it, and `fn(a, b)` is called for each maximal run [a, b) of them. A face drawn later wins a tie, as the
 painter's stable order draws it on top. */
 template <typename RunFn>
 __attribute__((always_inline)) inline void takeNearerOrEqual(double* nearest, int xBegin,
@@ -1748,9 +1748,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             biggrid2048. A Gouraud face's pen starts at each row's first sample, the span's
             first sample in the walk, so the colours are the walk's. False, having drawn
             nothing, where a box is bigger, a face is not small (a zero area, or a big face that
-            the canvas clips to a small box) or a shader has no pen. Called before paintSmallFaces's own setup, which it repeats: with
-            the setup shared, the spheres' walk in paintSmallFaces took 5-6% longer (the same
-            instructions; the code's layout). */
+            the canvas clips to a small box) or a shader has no pen. Called before
+            paintSmallFaces's own setup, which it repeats: with the setup shared, the spheres'
+            walk in paintSmallFaces took 5-6% longer (the same instructions; the code's
+            layout). */
             auto paintTinyBlocks = [&](const int* faces, int count) __attribute__((noinline)) {
                 constexpr bool kTinyBlocks =
                     std::is_same<T, float>::value && HasPen<SmallShader>::value;
