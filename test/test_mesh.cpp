@@ -253,8 +253,9 @@ TEST(ShadingMesh, EqualsSequentialPaintersForAnyThreadCount)
 // a face's pixels never depend on the path that draws it. Tiny faces of a mesh are set up eight
 // at a time (AVX2 build); here each is compared with the same face drawn alone, bit for bit, in
 // bands drawn in face order (one winding; with depths, the 4 x 4 block test) and front to back
-// (both windings, as a closed surface's). Colours linear in x or y, zero at a span's first column or along a row, make the
-// sums cancel to rounding noise there, which any other order of the sums changes; axis-aligned
+// (both windings, as a closed surface's). Colours linear in x or y, zero at a span's first
+// column or along a row, make the sums cancel to rounding noise there, which any other order of
+// the sums changes; axis-aligned
 // cells give vertices of equal y, whose order the sort's tie-break decides. Colours beyond
 // +-1e37 are computed per pixel, never stepped in float, which could overflow.
 TEST(ShadingMesh, TinyGouraudFacesEqualFacesDrawnAlone)

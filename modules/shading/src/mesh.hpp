@@ -483,8 +483,8 @@ inline void paintUntouched(T* row, const double* depths, int columns, const T co
 
 /** The depth test that draws the painter's image in face order: the samples of [xBegin, xEnd)
 whose nearest depth so far (`nearest`, kUntouchedDepth where none) is not nearer than `depth`
-take it, and `fn(a, b)` is called for each maximal run [a, b) of them. A face drawn later wins a tie, as the
-painter's stable order draws it on top. */
+take it, and `fn(a, b)` is called for each maximal run [a, b) of them. A face drawn later wins
+a tie, as the painter's stable order draws it on top. */
 template <typename RunFn>
 __attribute__((always_inline)) inline void takeNearerOrEqual(double* nearest, int xBegin,
                                                              int xEnd, double depth, RunFn&& fn)
