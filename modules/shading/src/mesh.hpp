@@ -157,6 +157,17 @@ inline void refineEqualKeys(uint64_t* items, size_t n, const double* exactKeys,
     }
 }
 
+/** p, held in one register from here on: the compiler then adds a loop's offsets to it in the
+address (base + index), rather than to the parts it was computed from, an add or two each. */
+template <typename Pointer>
+inline Pointer inOneRegister(Pointer p)
+{
+#if defined(__GNUC__)
+    asm("" : "+r"(p));
+#endif
+    return p;
+}
+
 //! Asks for the cache lines of [data, data + size) in advance, for writing.
 inline void prefetchBytes(const uchar* data, size_t size)
 {
@@ -1619,14 +1630,20 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             auto setUpSmallFaces = [&](const int* faces, int count, SmallFaces& out,
                                        bool mostTiny) {
                 alignas(32) int32_t x[3][kBatch], y[3][kBatch];
+                // In locals: the loop's int32 stores to `out` might otherwise alias the
+                // captured rows, which it would then reload every face.
+                const int top = y0, bottom = y1;
+                const Vec3i* const cornersOf = faceAt;
+                const SampleBox* const boxOf = faceBox;
+                const FixedPoint* const points = snapped;
                 for (int i = 0; i < count; i++) {
-                    out.corners[i] = faceAt[faces[i]];
-                    const SampleBox& box = faceBox[faces[i]];
+                    out.corners[i] = cornersOf[faces[i]];
+                    const SampleBox& box = boxOf[faces[i]];
                     out.firstColumn[i] = box.colFirst;
-                    out.firstRow[i] = std::max(box.rowBegin, y0);
-                    out.endRow[i] = std::min(box.rowEnd, y1);
+                    out.firstRow[i] = std::max(box.rowBegin, top);
+                    out.endRow[i] = std::min(box.rowEnd, bottom);
                     for (int j = 0; j < 3; j++) {
-                        const FixedPoint& p = snapped[out.corners[i][j]];
+                        const FixedPoint& p = points[out.corners[i][j]];
                         x[j][i] = int32_t(p.x), y[j][i] = int32_t(p.y);  // narrow
                         shaders.prefetchVertex(out.corners[i][j]);
                     }
@@ -1760,12 +1777,17 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     return false;
                 } else {
                     alignas(32) int32_t columnCount[kBatch], rowCount[kBatch];
-                    for (int i = 0; i < count; i++) {
-                        const SampleBox& box = faceBox[faces[i]];
-                        columnCount[i] = box.colLast - box.colFirst + 1;
-                        rowCount[i] = std::min(box.rowEnd, y1) - std::max(box.rowBegin, y0);
-                        if (columnCount[i] > 4 || rowCount[i] > 4)
-                            return false;
+                    {
+                        const SampleBox* const boxOf = faceBox;  // locals: setUpSmallFaces
+                        const int top = y0, bottom = y1;
+                        for (int i = 0; i < count; i++) {
+                            const SampleBox box = boxOf[faces[i]];
+                            columnCount[i] = box.colLast - box.colFirst + 1;
+                            rowCount[i] =
+                                std::min(box.rowEnd, bottom) - std::max(box.rowBegin, top);
+                            if (columnCount[i] > 4 || rowCount[i] > 4)
+                                return false;
+                        }
                     }
                     SmallFaces sf;
                     setUpSmallFaces(faces, count, sf, false);
@@ -1794,36 +1816,45 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                 (v256_load(sf.firstRow + g) - bandTop) * rowLength +
                                     v256_load(sf.firstColumn + g));
                     }
-                    // Bit 4 r + c's offsets from the block's first sample: in the band's
-                    // depths (doubles) and on the canvas (bytes).
-                    int depthOffset[16];
-                    size_t pixelOffset[16];
+                    // Bit 4 r + c's offsets in bytes from the block's first sample, in the
+                    // band's depths and on the canvas: each sample's addresses are then a
+                    // base register plus one of these.
+                    ptrdiff_t depthOffset[16], pixelOffset[16];
                     for (int bit = 0; bit < 16; bit++) {
-                        depthOffset[bit] = (bit >> 2) * columns + (bit & 3);
-                        pixelOffset[bit] =
-                            size_t(bit >> 2) * rowStep + size_t(bit & 3) * 3 * sizeof(T);
+                        depthOffset[bit] = (ptrdiff_t(bit >> 2) * columns + (bit & 3)) *
+                                           ptrdiff_t(sizeof(double));
+                        pixelOffset[bit] = ptrdiff_t(bit >> 2) * ptrdiff_t(rowStep) +
+                                           ptrdiff_t(bit & 3) * 3 * ptrdiff_t(sizeof(T));
                     }
                     const TriangleSetup unread{};  // the shader reads no setup
                     double* const nearestDepths = bandDepths.data();
+                    const double* const faceKey = keyOf;
+                    uchar* const canvasAt = pixels;
+                    const size_t stepBytes = rowStep;
                     for (int i = 0; i < count; i++) {
-                        const double depth = keyOf[faces[i]];
-                        double* const nearestAt = nearestDepths + nearestIndex[i];
+                        const double depth = faceKey[faces[i]];
+                        uchar* const nearestAt = inOneRegister(
+                            reinterpret_cast<uchar*>(nearestDepths + nearestIndex[i]));
                         const int firstColumn = sf.firstColumn[i];
-                        uchar* const pixelAt = pixels + size_t(sf.firstRow[i]) * rowStep +
-                                               size_t(firstColumn) * 3 * sizeof(T);
-                        // Without a branch on the test: a sample that does not take the face
-                        // stores into these. (Row by row, a run at a time, cost more.)
+                        uchar* const pixelAt = inOneRegister(
+                            canvasAt + size_t(sf.firstRow[i]) * stepBytes +
+                            size_t(firstColumn) * 3 * sizeof(T));
+                        // A sample that does not take the face stores into these (GCC 12
+                        // makes that a branch over the stores, never taken on the million-face
+                        // grid, which draws each sample once). Row by row, a run at a time,
+                        // cost more.
                         double discardedDepth;
                         T discardedPixel[3];
                         auto putSamples = [&](uint32_t samples, const auto& pen) {
                             for (; samples; samples &= samples - 1) {
-                                const int bit = __builtin_ctz(samples);
-                                double* const nearest = nearestAt + depthOffset[bit];
+                                const unsigned bit = unsigned(__builtin_ctz(samples));
+                                double* const nearest =
+                                    reinterpret_cast<double*>(nearestAt + depthOffset[bit]);
                                 const bool takes = !(*nearest < depth);
                                 *(takes ? nearest : &discardedDepth) = depth;
                                 pen.put(takes ? reinterpret_cast<T*>(pixelAt + pixelOffset[bit])
                                               : discardedPixel,
-                                        firstColumn + (bit & 3));
+                                        firstColumn + int(bit & 3));
                             }
                         };
                         if constexpr (!SmallShader::kReadsWeights) {  // one colour
