@@ -1386,12 +1386,37 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     std::vector<uint64_t>& binned = work.binned;
     binned.resize(bandStart[bandCount]);
     auto binChunk = [&](int c, auto kKeyed) {
-        uint64_t* cursor = &binCursor[size_t(c) * bandCount];
+        uint64_t* const cursor = &binCursor[size_t(c) * bandCount];
+        uint64_t* const entries = binned.data();
+        const SampleBox* const boxOf = boxes.data();
+        const int shift = bandShift;
         const int begin = c * chunkFaces;
+        // Consecutive faces within one band (the common case) advance its cursor in a
+        // register: through memory, a load and a store a face, it was the loop's critical path.
+        int runBand = -1;
+        uint64_t runCursor = 0;
         for (int i = std::min(faceCount, begin + chunkFaces); i-- > begin;) {
+            const SampleBox& box = boxOf[i];
+            if (box.rowBegin >= box.rowEnd)
+                continue;  // culled: in no band
             const uint64_t entry = bandEntry(kKeyed ? quantizedKey(i) : 0, i);
-            forEachBand(boxes[i], [&](int k) { binned[cursor[k]++] = entry; });
+            const int first = box.rowBegin >> shift, last = (box.rowEnd - 1) >> shift;
+            if (first == last) {
+                if (first != runBand) {
+                    if (runBand >= 0)
+                        cursor[runBand] = runCursor;
+                    runBand = first, runCursor = cursor[first];
+                }
+                entries[runCursor++] = entry;
+                continue;
+            }
+            if (runBand >= 0)
+                cursor[runBand] = runCursor, runBand = -1;
+            for (int k = first; k <= last; k++)
+                entries[cursor[k]++] = entry;
         }
+        if (runBand >= 0)
+            cursor[runBand] = runCursor;
     };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
