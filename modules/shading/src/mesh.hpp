@@ -1415,8 +1415,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             for (int k = first; k <= last; k++)
                 entries[cursor[k]++] = entry;
         }
-        if (runBand >= 0)
-            cursor[runBand] = runCursor;
+        // (The last run's cursor is not stored back: no one reads the cursors after this pass.)
     };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
@@ -1803,7 +1802,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 } else {
                     alignas(32) int32_t columnCount[kBatch], rowCount[kBatch];
                     {
-                        const SampleBox* const boxOf = faceBox;  // locals: setUpSmallFaces
+                        // In locals, as in setUpSmallFaces.
+                        const SampleBox* const boxOf = faceBox;
                         const int top = y0, bottom = y1;
                         for (int i = 0; i < count; i++) {
                             const SampleBox box = boxOf[faces[i]];
