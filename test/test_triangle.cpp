@@ -7,6 +7,7 @@
 #include <opencv2/shading.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 using namespace cv;
@@ -321,4 +322,54 @@ TEST(ShadingTriangle, MeshWithOneHugeColourEqualsFaceByFace)
                 for (int k = 0; k < 3; k++)
                     ASSERT_FALSE(std::isnan(mesh.at<Vec3f>(y, x)[k])) << x << "," << y;
     }
+}
+
+// The same for a mesh big enough that its colours are converted (and their range checked) in
+// parallel slices of 32,768 values: a huge colour (or a NaN) in the last slice only, given as
+// doubles or as floats, still reaches the faces that use it.
+TEST(ShadingTriangle, BigMeshWithOneHugeColourInItsLastSliceEqualsFaceByFace)
+{
+    const int n = 120, m = 100;  // 121 x 101 vertices: 36,663 colour values
+    std::vector<Point2d> verts;
+    for (int j = 0; j <= m; j++)
+        for (int i = 0; i <= n; i++)
+            verts.push_back(Point2d(6 * i + 0.3, 6 * j + 0.6));  // spans of up to 6 steps
+    std::vector<Vec3i> faces;
+    for (int j = 0; j < m; j++)
+        for (int i = 0; i < n; i++) {
+            const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            faces.push_back(Vec3i(a, b, d));
+            faces.push_back(Vec3i(a, d, c));
+        }
+    const int last = int(verts.size()) - 1 - 50;  // past value 32,768, away from the border
+    for (double odd : {-2.7753559049153819e+40, 3e38, std::numeric_limits<double>::quiet_NaN()})
+        for (int depth : {CV_64F, CV_32F}) {
+            if (depth == CV_32F && std::abs(odd) > std::numeric_limits<float>::max())
+                continue;  // not a float
+            Mat colors(int(verts.size()), 3, CV_64F);
+            for (int v = 0; v < colors.rows; v++)
+                for (int k = 0; k < 3; k++)
+                    colors.at<double>(v, k) = 0.25 + 0.5 * ((v * 7 + k * 3) % 11) / 11.0;
+            colors.at<double>(last, 1) = odd;
+            Mat given, asDrawn;  // asDrawn: the values the mesh draws (floats are exact)
+            colors.convertTo(given, depth);
+            given.convertTo(asDrawn, CV_64F);
+            Mat mesh(6 * m + 2, 6 * n + 2, CV_32FC3, Scalar::all(0)), byFace = mesh.clone();
+            shading::drawMesh(mesh, verts, faces, given, noArray(), shading::SHADE_GOURAUD);
+            for (const Vec3i& f : faces) {
+                const std::vector<Vec3d> c = {asDrawn.at<Vec3d>(f[0]), asDrawn.at<Vec3d>(f[1]),
+                                              asDrawn.at<Vec3d>(f[2])};
+                shading::gouraud(byFace,
+                                 std::vector<Point2d>{verts[f[0]], verts[f[1]], verts[f[2]]}, c);
+            }
+            // Bit for bit (NaN pixels included, which no norm compares).
+            EXPECT_EQ(std::memcmp(mesh.data, byFace.data, mesh.total() * mesh.elemSize()), 0)
+                << "colour " << odd << ", depth " << depth;
+            if (std::isnan(odd))
+                continue;
+            for (int y = 0; y < mesh.rows; y++)
+                for (int x = 0; x < mesh.cols; x++)
+                    for (int k = 0; k < 3; k++)
+                        ASSERT_FALSE(std::isnan(mesh.at<Vec3f>(y, x)[k])) << x << "," << y;
+        }
 }

@@ -26,12 +26,11 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
         drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
         return;
     }
-    bool inRange = true;  // then no face checks its colours
-    for (const Vec3d& c : mesh.colors)
-        for (int k = 0; k < 3; k++)
-            inRange &= gouraudInRange(c[k]);
-    drawMeshInBands(canvas, mesh,
-                    VertexColorShaders<GouraudShader<T>>{mesh.colors.data(), inRange}, fill);
+    // With every colour in range (checked as they were read), no face checks its own.
+    drawMeshInBands(
+        canvas, mesh,
+        VertexColorShaders<GouraudShader<T>>{mesh.colors.data(), mesh.colorsInGouraudRange},
+        fill);
 }
 
 }  // namespace

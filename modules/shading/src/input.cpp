@@ -63,6 +63,15 @@ static bool allFinite(const T* v, size_t n)
     return finite;
 }
 
+//! Whether every one of v[0 .. n) lies within +-limit (NaN does not).
+static bool allWithin(const double* v, size_t n, double limit)
+{
+    bool within = true;
+    for (size_t i = 0; i < n; i++)
+        within &= std::abs(v[i]) <= limit;  // vectorizes
+    return within;
+}
+
 //! Calls fn(begin, end) for the slices of [0, n), in parallel.
 template <typename Fn>
 static void forSlices(size_t n, Fn&& fn)
@@ -82,6 +91,9 @@ static void checkConverted(const Mat& dst, const ConversionCheck& check)
             check.failed->store(true, std::memory_order_relaxed);
     } else if (check.kind == ConversionCheck::kFinite) {
         if (!allFinite(dst.ptr<double>(), n))
+            check.failed->store(true, std::memory_order_relaxed);
+    } else if (check.kind == ConversionCheck::kColorRange) {
+        if (!allWithin(dst.ptr<double>(), n, kGouraudColorLimit))
             check.failed->store(true, std::memory_order_relaxed);
     }
 }
@@ -171,9 +183,12 @@ void readPoints(InputArray arr, const char* argName, int expectedCount, std::vec
 }
 
 void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
-                PendingConversions* pending)
+                PendingConversions* pending, std::atomic<bool>* outOfRange)
 {
-    readItems(arr, argName, expectedCount, out, pending);
+    ConversionCheck check;
+    if (outOfRange)
+        check.kind = ConversionCheck::kColorRange, check.failed = outOfRange;
+    readItems(arr, argName, expectedCount, out, pending, check);
 }
 
 void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,

@@ -18,7 +18,8 @@ namespace detail {
 CV_32S values are indices in [0, limit), or that CV_64F values are finite. A failed check sets
 `failed`; the caller then finds and reports the first bad value. */
 struct ConversionCheck {
-    enum Kind { kNone, kIndices, kFinite } kind = kNone;
+    //! kColorRange: every value within +-kGouraudColorLimit (so not NaN).
+    enum Kind { kNone, kIndices, kFinite, kColorRange } kind = kNone;
     int limit = 0;                         //!< kIndices: the vertex count
     std::atomic<bool>* failed = nullptr;  //!< set when a value fails
 };
@@ -46,8 +47,10 @@ private:
 // pending->run() returns.
 void readPoints(InputArray arr, const char* argName, int expectedCount, std::vector<Point2d>& out,
                 PendingConversions* pending = nullptr);
+/** Colours. With `outOfRange`, it is set when some value lies beyond +-kGouraudColorLimit or is
+NaN (checked as the values are converted, in parallel, while they are in cache). */
 void readColors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,
-                PendingConversions* pending = nullptr);
+                PendingConversions* pending = nullptr, std::atomic<bool>* outOfRange = nullptr);
 /** 3D points or vectors (vertices, normals): rows of x, y, z. With `nonFinite`, it is set when
 some value is not finite (checked as the values are converted, once they have arrived). */
 void readVectors(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& out,

@@ -600,6 +600,8 @@ struct MeshData {
     FaceRows faces;                 //!< indices checked against vertices
     std::vector<Vec3i> faceStorage;  //!< the faces, where they are not the caller's
     std::vector<Vec3d> colors;  //!< one per vertex
+    //! Every colour is within +-kGouraudColorLimit (gouraudInRange); false when not known.
+    bool colorsInGouraudRange = false;
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order (or by faceDepth)
     //! One per face, or empty: the painter's key of each face instead of its vertices' mean
     //! depth (3D: the mean camera depth of the face a clipped piece comes from).

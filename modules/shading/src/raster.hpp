@@ -33,6 +33,10 @@ struct FixedPoint {
     int64_t x, y;
 };
 
+//! The Gouraud shader steps colours within +-this in float; beyond it (or NaN) it computes
+//! them per pixel, where stepping could overflow (gouraudInRange).
+constexpr double kGouraudColorLimit = 1e37;
+
 OPENCV_SHADING_ISA_BEGIN
 
 // GCC and Clang provide 128-bit integers; __extension__ keeps -Wpedantic quiet about it.

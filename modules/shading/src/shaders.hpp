@@ -459,7 +459,7 @@ static_assert(offsetof(SmallWeights, edgePerColumn) == offsetof(SmallWeights, ed
 computed per pixel, where stepping in float could overflow. */
 inline bool gouraudInRange(double v)
 {
-    return std::abs(v) <= 1e37;
+    return std::abs(v) <= kGouraudColorLimit;
 }
 
 #if CV_AVX2

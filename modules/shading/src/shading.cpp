@@ -71,10 +71,14 @@ MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inp
     PendingConversions pending;
     readPoints(verts2d, "verts2d", -1, mesh.vertices, &pending);
     const int count = int(mesh.vertices.size());
-    readColors(vcolors, "vcolors", count, mesh.colors, &pending);
+    // Gouraud's range check of the colours rides on their conversion (see drawMeshAs).
+    std::atomic<bool> colorOutOfRange{false};
+    readColors(vcolors, "vcolors", count, mesh.colors, &pending,
+               shadeType == SHADE_GOURAUD ? &colorOutOfRange : nullptr);
     readDepths(depth, "depth", count, mesh.depth, &pending);
     // Last: runs the conversions.
     mesh.faces = readFaceRows(faces, "faces", count, mesh.faceStorage, &pending);
+    mesh.colorsInGouraudRange = shadeType == SHADE_GOURAUD && !colorOutOfRange.load();
     return mesh;
 }
 
