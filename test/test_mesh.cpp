@@ -446,6 +446,65 @@ TEST(ShadingMesh, LargeInputFormsAgree)
         }
 }
 
+// Float vertices are snapped where they are, not copied into doubles first: every float form
+// (continuous or not) gives the image of the same values given as doubles, for coordinates on
+// the rounding ties of the 1/256 grid, NaN, infinite and out-of-range ones, an odd count (the
+// snap's tail) and a vertex far outside the canvas (off the narrow grid's 8-face paths).
+TEST(ShadingMesh, FloatVerticesDrawAsTheirDoubles)
+{
+    const Size size(300, 200);
+    RNG rng(41);
+    const int n = 200, m = 100;      // cells of 1.5 x 2 pixels
+    const int count = (n + 1) * m + 1;  // odd: the snap's tail, the last vertex alone
+    for (bool farVertex : {false, true}) {
+        std::vector<Point2f> verts;
+        for (int j = 0; j < m; j++)
+            for (int i = 0; i <= n; i++) {
+                // Off the grid by multiples of 1/512 (ties of the 1/256 grid) or anything.
+                auto jitter = [&] {
+                    return rng.uniform(0, 2) ? float(rng.uniform(-256, 257) / 512.0)
+                                             : rng.uniform(-0.5f, 0.5f);
+                };
+                verts.push_back(Point2f(1.5f * i + jitter(), 2.0f * j + jitter()));
+            }
+        verts.push_back(Point2f(299 + 0.5f / 256, 199 + 1.5f / 256));  // the tail, on ties
+        ASSERT_EQ(int(verts.size()), count);
+        verts[n + 17].x = std::numeric_limits<float>::quiet_NaN();
+        verts[n + 40].y = std::numeric_limits<float>::infinity();
+        verts[n + 80].x = 3e30f;  // beyond the subpixel grid's range
+        if (farVertex)
+            verts[2 * n + 50] = Point2f(-3e6f, 1e6f);
+        std::vector<Vec3i> faces;
+        for (int j = 0; j + 1 < m; j++)
+            for (int i = 0; i < n; i++) {
+                const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+                faces.push_back(Vec3i(a, b, d));
+                faces.push_back(Vec3i(a, d, c));
+            }
+        faces.push_back(Vec3i(count - 1, count - 2, count - 3 - n));  // through the tail
+        const std::vector<Vec3f> colors = randomColors(verts.size(), 42);
+        const std::vector<Point2d> asDoubles(verts.begin(), verts.end());
+
+        const Mat column = Mat(verts).reshape(1).clone();  // N x 2
+        const Mat row = Mat(verts).reshape(2, 1).clone();  // 1 x N, two channels
+        Mat wide(count, 3, CV_32F, Scalar::all(0));        // its left part is not continuous
+        column.copyTo(wide.colRange(0, 2));
+        const Mat strided = wide.colRange(0, 2);
+        const std::vector<_InputArray> floatForms = {_InputArray(verts), _InputArray(column),
+                                                     _InputArray(row), _InputArray(strided)};
+        for (int shade : {shading::SHADE_FLAT, shading::SHADE_GOURAUD}) {
+            Mat expected;
+            shading::render(asDoubles, faces, colors, noArray(), expected, shade, size);
+            for (size_t i = 0; i < floatForms.size(); i++) {
+                Mat img;
+                shading::render(floatForms[i], faces, colors, noArray(), img, shade, size);
+                EXPECT_EQ(std::memcmp(img.data, expected.data, img.total() * img.elemSize()), 0)
+                    << "float form " << i << ", shade " << shade << ", far vertex " << farVertex;
+            }
+        }
+    }
+}
+
 // Many callers at once, each into its own canvas (while the library also runs its own parallel
 // loops): every result equals the one computed alone.
 TEST(ShadingMesh, ConcurrentCallsIntoSeparateCanvases)

@@ -219,6 +219,20 @@ Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vec
     return Rows3(m.ptr<float>(), count);
 }
 
+PointRows readPointRows(InputArray arr, const char* argName, int expectedCount,
+                        std::vector<Point2d>& storage, PendingConversions* pending)
+{
+    const Mat m = arr.getMat();
+    // As readRows3: matrices and vectors only.
+    if (m.depth() != CV_32F || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+        readPoints(arr, argName, expectedCount, storage, pending);
+        return PointRows(storage);
+    }
+    const size_t count = size_t(countRows(m, argName, 2, expectedCount));
+    storage.clear();
+    return PointRows(m.ptr<Point2f>(), count);
+}
+
 //! Raises the error for the first index of faces[0 .. count) outside [0, vertexCount).
 static void reportIndexOutside(const Vec3i* faces, size_t count, const char* argName,
                                int vertexCount)

@@ -85,6 +85,29 @@ private:
     size_t size_ = 0;
 };
 
+/** 2D points from where they are, as Rows3 holds rows of three: the caller's own continuous
+CV_32F points, or points converted into a vector. Valid while both live. */
+class PointRows {
+public:
+    PointRows() = default;
+    PointRows(const Point2f* points, size_t count) : floats_(points), size_(count) {}
+    explicit PointRows(const std::vector<Point2d>& points)
+        : doubles_(points.data()), size_(points.size())
+    {
+    }
+
+    size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    //! The caller's floats, or null: then doubles() holds the points.
+    const Point2f* floats() const { return floats_; }
+    const Point2d* doubles() const { return doubles_; }
+
+private:
+    const Point2f* floats_ = nullptr;
+    const Point2d* doubles_ = nullptr;
+    size_t size_ = 0;
+};
+
 /** Faces as index triples, from where they are: the caller's own continuous CV_32S values (no
 copy), or values converted into a vector. Valid while both live. */
 class FaceRows {
@@ -107,6 +130,10 @@ private:
 continuous CV_32F: those as they are; else converted into `storage`, as the readers do. */
 Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& storage,
                 PendingConversions* pending, std::atomic<bool>* nonFinite = nullptr);
+/** readPoints without a copy where the points are continuous CV_32F: those as they are; else
+converted into `storage`, as readPoints does. */
+PointRows readPointRows(InputArray arr, const char* argName, int expectedCount,
+                        std::vector<Point2d>& storage, PendingConversions* pending);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
                 PendingConversions* pending = nullptr);

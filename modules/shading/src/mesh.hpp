@@ -594,7 +594,9 @@ OPENCV_SHADING_ISA_END
 
 /** A mesh as the band pass reads it: normalised and validated at the API edge. */
 struct MeshData {
-    std::vector<Point2d> vertices;  //!< unused when `snapped` is given
+    //! The vertices (the caller's floats, or `vertexStorage`); unused when `snapped` is given.
+    PointRows vertices;
+    std::vector<Point2d> vertexStorage;  //!< the vertices, where they are not the caller's
     //! The vertices already snapped (snapToGrid), or empty: the band pass snaps `vertices`.
     std::vector<FixedPoint> snapped;
     FaceRows faces;                 //!< indices checked against vertices
@@ -609,7 +611,8 @@ struct MeshData {
 
     size_t capacityBytes() const
     {
-        return vertices.capacity() * sizeof(Point2d) + snapped.capacity() * sizeof(FixedPoint) +
+        return vertexStorage.capacity() * sizeof(Point2d) +
+               snapped.capacity() * sizeof(FixedPoint) +
                faceStorage.capacity() * sizeof(Vec3i) +
                colors.capacity() * sizeof(Vec3d) +
                (depth.capacity() + faceDepth.capacity()) * sizeof(double);
@@ -778,10 +781,24 @@ inline v_float64x4 gatherDoubles(const double* tab, const int* idx)
 }
 #endif
 
-/** Snaps in[0 .. count) into out (snapToGrid, bit for bit); returns whether every vertex is
-within kNarrowPixels on both axes (NaN is not), so lies on the narrow grid. Only the AVX2 build,
-whose first pass uses that, checks: the baseline returns false. */
-inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
+#if OPENCV_SHADING_BOX_EIGHT
+//! Two points' coordinates, as doubles (float to double is exact).
+inline __m256d twoPointsAt(const Point2d* p)
+{
+    return _mm256_loadu_pd(&p->x);
+}
+inline __m256d twoPointsAt(const Point2f* p)
+{
+    return _mm256_cvtps_pd(_mm_loadu_ps(&p->x));
+}
+#endif
+
+/** Snaps in[0 .. count) (Point2d, or the caller's Point2f) into out (snapToGrid, bit for bit);
+returns whether every vertex is within kNarrowPixels on both axes (NaN is not), so lies on the
+narrow grid. Only the AVX2 build, whose first pass uses that, checks: the baseline returns false.
+*/
+template <typename Point>
+inline bool snapPoints(const Point* in, FixedPoint* out, int count)
 {
     bool narrow = OPENCV_SHADING_BOX_EIGHT;
     int i = 0;
@@ -799,7 +816,7 @@ inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
     const __m256i invalid = _mm256_set_epi64x(0, kInvalidCoordinate, 0, kInvalidCoordinate);
     __m256d allNarrow = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
     for (; i + 2 <= count; i += 2) {
-        const __m256d v = _mm256_loadu_pd(&in[i].x);
+        const __m256d v = twoPointsAt(in + i);
         const __m256d magnitude = _mm256_and_pd(v, absMask);
         // A vertex is valid where both of its coordinates are in range (NaN is not).
         const __m256d inRange = _mm256_cmp_pd(magnitude, maxCoordinate, _CMP_LE_OQ);
@@ -819,7 +836,7 @@ inline bool snapPoints(const Point2d* in, FixedPoint* out, int count)
     narrow = _mm256_movemask_pd(allNarrow) == 0xf;
 #endif
     for (; i < count; i++) {
-        out[i] = snapToGrid(in[i]);
+        out[i] = snapToGrid(Point2d(in[i].x, in[i].y));
 #if OPENCV_SHADING_BOX_EIGHT
         narrow &= std::abs(in[i].x) < kNarrowPixels && std::abs(in[i].y) < kNarrowPixels;
 #endif
@@ -1036,6 +1053,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // the caller did.
     MeshWorkspace& work = MeshWorkspace::ofThisThread();
     const bool snappedGiven = !mesh.snapped.empty() || mesh.vertices.empty();
+    const Point2f* const vertexFloats = mesh.vertices.floats();
     const int vertexCount = snappedGiven ? 0 : int(mesh.vertices.size());
     work.snapped.resize(vertexCount);
     const FixedPoint* const snapped = snappedGiven ? mesh.snapped.data() : work.snapped.data();
@@ -1054,8 +1072,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         const int begin = r.start * kVertexChunk;
         bool narrow = true;
         if (!snappedGiven) {
-            narrow = snapPoints(mesh.vertices.data() + begin, work.snapped.data() + begin,
-                                end - begin);
+            // The caller's floats snapped where they are: no copy of them in double.
+            narrow = vertexFloats ? snapPoints(vertexFloats + begin, work.snapped.data() + begin,
+                                               end - begin)
+                                  : snapPoints(mesh.vertices.doubles() + begin,
+                                               work.snapped.data() + begin, end - begin);
         } else if (boxEightFits) {
             // (drawMesh3d's vertices behind the near plane would otherwise take the whole mesh
             // off the 8-face paths.)

@@ -196,7 +196,7 @@ void buildScreenMesh(Mesh3dInput& in, const Camera& cam, const RenderSettings& s
     std::vector<uint8_t>& side = in.side;
     side.resize(vertexCount);
     // Projected straight onto the band pass's subpixel grid: it snaps nothing itself.
-    screen.mesh.vertices.clear();
+    screen.mesh.vertices = PointRows();
     std::vector<FixedPoint>& projected = screen.mesh.snapped;
     projected.resize(vertexCount);
     screen.invZ.resize(vertexCount);

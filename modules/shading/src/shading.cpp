@@ -69,7 +69,7 @@ MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inp
     checkShadeType(shadeType);
     thread_local MeshData mesh;
     PendingConversions pending;
-    readPoints(verts2d, "verts2d", -1, mesh.vertices, &pending);
+    mesh.vertices = readPointRows(verts2d, "verts2d", -1, mesh.vertexStorage, &pending);
     const int count = int(mesh.vertices.size());
     // Gouraud's range check of the colours rides on their conversion (see drawMeshAs).
     std::atomic<bool> colorOutOfRange{false};
