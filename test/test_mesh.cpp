@@ -505,6 +505,41 @@ TEST(ShadingMesh, FloatVerticesDrawAsTheirDoubles)
     }
 }
 
+// Float colours are read where they are in flat shading (the mesh's face means computed in
+// double from them): every float form gives the image of the same values given as doubles, on
+// float and 8-bit canvases, with channels whose sums round differently in float.
+TEST(ShadingMesh, FloatColoursDrawAsTheirDoubles)
+{
+    const Size size(190, 110);
+    std::vector<Point2d> verts;
+    std::vector<Vec3i> faces;
+    makeGridMesh(size, 140, false, 51, verts, faces);  // 19,881 vertices: parallel slices
+    RNG rng(52);
+    std::vector<Vec3f> colors(verts.size());
+    for (Vec3f& c : colors)  // 2^24 + small: the sum of three in float would round
+        c = Vec3f(rng.uniform(0.0f, 1.0f), float(rng.uniform(-3, 4)) * 16777216.0f + 1.0f,
+                  rng.uniform(-2.0f, 2.0f) * 1e30f);
+    const std::vector<Vec3d> asDoubles(colors.begin(), colors.end());
+    const Mat column = Mat(colors).reshape(1).clone();  // N x 3
+    const Mat row = Mat(colors).reshape(3, 1).clone();  // 1 x N, three channels
+    Mat wide(int(colors.size()), 4, CV_32F, Scalar::all(0));  // its left part is not continuous
+    column.copyTo(wide.colRange(0, 3));
+    const Mat strided = wide.colRange(0, 3);
+    const std::vector<_InputArray> floatForms = {_InputArray(colors), _InputArray(column),
+                                                 _InputArray(row), _InputArray(strided)};
+    for (int type : {CV_32FC3, CV_8UC3})
+        for (int shade : {shading::SHADE_FLAT, shading::SHADE_GOURAUD}) {
+            Mat expected(size, type, Scalar::all(7));
+            shading::drawMesh(expected, verts, faces, asDoubles, noArray(), shade);
+            for (size_t i = 0; i < floatForms.size(); i++) {
+                Mat img(size, type, Scalar::all(7));
+                shading::drawMesh(img, verts, faces, floatForms[i], noArray(), shade);
+                EXPECT_EQ(std::memcmp(img.data, expected.data, img.total() * img.elemSize()), 0)
+                    << "float form " << i << ", type " << type << ", shade " << shade;
+            }
+        }
+}
+
 // Many callers at once, each into its own canvas (while the library also runs its own parallel
 // loops): every result equals the one computed alone.
 TEST(ShadingMesh, ConcurrentCallsIntoSeparateCanvases)

@@ -23,13 +23,17 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
     Vec<T, 3> bg;
     const Vec<T, 3>* fill = backgroundAs(background, bg);
     if (shadeType == SHADE_FLAT) {
-        drawMeshInBands(canvas, mesh, VertexColorShaders<FlatShader<T>>{mesh.colors.data()}, fill);
+        drawMeshInBands(canvas, mesh,
+                        VertexColorShaders<FlatShader<T>>{mesh.colors.doubles(), false,
+                                                          mesh.colors.floats()},
+                        fill);
         return;
     }
     // With every colour in range (checked as they were read), no face checks its own.
     drawMeshInBands(
         canvas, mesh,
-        VertexColorShaders<GouraudShader<T>>{mesh.colors.data(), mesh.colorsInGouraudRange},
+        VertexColorShaders<GouraudShader<T>>{mesh.colors.doubles(), mesh.colorsInGouraudRange,
+                                             mesh.colors.floats()},
         fill);
 }
 

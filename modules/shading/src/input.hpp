@@ -79,6 +79,10 @@ public:
         return doubles_[i];
     }
 
+    //! The caller's floats (3 a row), or null: then doubles() holds the rows.
+    const float* floats() const { return floats_; }
+    const Vec3d* doubles() const { return doubles_; }
+
 private:
     const float* floats_ = nullptr;
     const Vec3d* doubles_ = nullptr;

@@ -601,7 +601,8 @@ struct MeshData {
     std::vector<FixedPoint> snapped;
     FaceRows faces;                 //!< indices checked against vertices
     std::vector<Vec3i> faceStorage;  //!< the faces, where they are not the caller's
-    std::vector<Vec3d> colors;  //!< one per vertex
+    Rows3 colors;  //!< one per vertex: the caller's floats, or `colorStorage`
+    std::vector<Vec3d> colorStorage;  //!< the colours, where they are not the caller's
     //! Every colour is within +-kGouraudColorLimit (gouraudInRange); false when not known.
     bool colorsInGouraudRange = false;
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order (or by faceDepth)
@@ -614,7 +615,7 @@ struct MeshData {
         return vertexStorage.capacity() * sizeof(Point2d) +
                snapped.capacity() * sizeof(FixedPoint) +
                faceStorage.capacity() * sizeof(Vec3i) +
-               colors.capacity() * sizeof(Vec3d) +
+               colorStorage.capacity() * sizeof(Vec3d) +
                (depth.capacity() + faceDepth.capacity()) * sizeof(double);
     }
 };
@@ -697,19 +698,45 @@ struct VertexColorShaders {
     static constexpr bool kZBuffer = false;  //!< no depth-tested drawing (see ZBufferBlocks)
     //! No colours computed per set-up face (see SurfaceShaders::lightFaces).
     static constexpr bool kLightsFaces = false;
-    const Vec3d* colors;  //!< one per vertex
+    const Vec3d* colors;  //!< one per vertex, unless colorFloats holds them
     //! Every colour is within the Gouraud shader's range (gouraudInRange), checked once.
     bool colorsInRange = false;
+    //! The caller's colours (3 floats a vertex), or null: read where they are (flat only).
+    const float* colorFloats = nullptr;
 
-    void prefetchVertex(int vertex) const { __builtin_prefetch(&colors[vertex]); }
+    void prefetchVertex(int vertex) const
+    {
+        if (colorFloats)
+            __builtin_prefetch(colorFloats + 3 * size_t(vertex));
+        else
+            __builtin_prefetch(&colors[vertex]);
+    }
 
     //! Called before a band's rows [y0, y1) are drawn: nothing to prepare.
     void beginBand(int /*y0*/, int /*y1*/) const {}
 
+    /** build(c), c[i] pointing at the colour of vertex f[i]: in `colors` (Vec3d), or for flat
+    shading in colorFloats (Vec3f), which its shader reads as they are. */
+    template <typename Build>
+    __attribute__((always_inline)) auto withColors(const Vec3i& f, Build&& build) const
+    {
+        // Gouraud always reads `colors` (readMesh): no second form of its shaders' setup,
+        // whose code in the band unit then took 1.03-1.05x longer on biggrid2048.
+        if constexpr (!Shader::kReadsWeights)
+            if (colorFloats) {
+                const Vec3f* const given = reinterpret_cast<const Vec3f*>(colorFloats);
+                const Vec3f* const c[3] = {&given[f[0]], &given[f[1]], &given[f[2]]};
+                return build(c);
+            }
+        const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
+        return build(c);
+    }
+
     Shader make(const TriangleSetup& t, const int* order, const Vec3i& f, int /*face*/) const
     {
-        const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
-        return Shader(t, order, c, colorsInRange);
+        return withColors(f, [&](const auto* const* c) {
+            return Shader(t, order, c, colorsInRange);
+        });
     }
 
     //! Small faces' shaders give Shader's values for every face: Gouraud's where every colour
@@ -721,8 +748,7 @@ struct VertexColorShaders {
     SmallShader makeSmall(const SmallWeights& w, const int* order, const Vec3i& f,
                           int /*face*/) const
     {
-        const Vec3d* const c[3] = {&colors[f[0]], &colors[f[1]], &colors[f[2]]};
-        return SmallShader(w, order, c);
+        return withColors(f, [&](const auto* const* c) { return SmallShader(w, order, c); });
     }
 };
 

@@ -40,6 +40,19 @@ inline void storePixel(float* p, const v_float32x4& v)
     p[2] = v_extract_n<2>(v);
 }
 
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+//! A vertex colour's channels 0 and 1 as doubles (a mesh's colours: Vec3d, or the caller's
+//! Vec3f read where they are; float to double is exact).
+inline v_float64x2 channelPair(const Vec3d& c)
+{
+    return v_load(c.val);
+}
+inline v_float64x2 channelPair(const Vec3f& c)
+{
+    return v_cvt_f64(v_load_low(c.val));
+}
+#endif
+
 #if CV_AVX2
 //! 8 RGB pixels of value v (lanes r, g, b), one after the other, as three 32-byte vectors: lanes
 //! r g b r g b r g, b r g b r g b r and g b r g b r g b.
@@ -267,23 +280,27 @@ struct FlatShader {
     static constexpr bool kReadsWeights = false;
     T color[4];  //!< the colour; for float rows a copy of its first channel in the fourth lane
 
-    FlatShader(const TriangleSetup&, const int*, const Vec3d* const c[3], bool = false)
+    //! Color: Vec3d, or Vec3f (the caller's colours, where they are).
+    template <typename Color>
+    FlatShader(const TriangleSetup&, const int*, const Color* const c[3], bool = false)
     {
 #if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
         if constexpr (std::is_same<T, float>::value) {
             // The scalar loop's sums and divisions, two channels a vector: two divisions a
             // face instead of three, the fourth lane's copy of channel 0 divided with channel 2.
-            const double* const p[3] = {c[0]->val, c[1]->val, c[2]->val};
-            const v_float64x2 sum01 = v_load(p[0]) + v_load(p[1]) + v_load(p[2]);
-            const v_float64x2 sum2 = v_load_low(p[0] + 2) + v_load_low(p[1] + 2) +
-                                     v_load_low(p[2] + 2);
+            const v_float64x2 sum01 = channelPair(*c[0]) + channelPair(*c[1]) + channelPair(*c[2]);
+            const v_float64x2 sum2 = v_setall_f64(double((*c[0])[2])) +
+                                     v_setall_f64(double((*c[1])[2])) +
+                                     v_setall_f64(double((*c[2])[2]));
             const v_float64x2 three = v_setall_f64(3.0);
             v_store(color, v_cvt_f32(sum01 / three, v_combine_low(sum2, sum01) / three));
             return;
         }
 #endif
         for (int k = 0; k < 3; k++)
-            color[k] = toChannel<T>(float(((*c[0])[k] + (*c[1])[k] + (*c[2])[k]) / 3.0));
+            color[k] = toChannel<T>(float((double((*c[0])[k]) + double((*c[1])[k]) +
+                                           double((*c[2])[k])) /
+                                          3.0));
         color[3] = color[0];
     }
 
