@@ -390,8 +390,9 @@ TEST(ShadingMesh, LargeInputFormsAgree)
     const std::vector<Vec3f> colors = randomColors(verts.size(), 32);
     RNG rng(33);
     std::vector<double> depth(verts.size());
-    for (double& d : depth)
-        d = rng.uniform(0.0, 8.0);
+    for (double& d : depth)  // floats, so that the float form below holds the same values
+        d = double(float(rng.uniform(0.0, 8.0)));
+    const std::vector<float> depthFloat(depth.begin(), depth.end());  // read where they are
 
     // The expectation: pieces of faces by mean depth, far to near (the painter's order), each with
     // its own vertices, all few enough to be converted at once.
@@ -435,12 +436,14 @@ TEST(ShadingMesh, LargeInputFormsAgree)
                                                 _InputArray(vertsStrided),
                                                 _InputArray(vertsRow)};
     for (size_t i = 0; i < vertForms.size(); i++)
-        for (int j = 0; j < 2; j++) {
+        for (int j = 0; j < 3; j++) {
             Mat img;
-            shading::render(vertForms[i], j ? _InputArray(facesDouble) : _InputArray(faces),
-                            j ? _InputArray(colorsDouble) : _InputArray(colors),
-                            j ? _InputArray(depthRow) : _InputArray(depth), img,
-                            shading::SHADE_GOURAUD, size, Scalar::all(1.0));
+            const _InputArray depthForm = j == 0   ? _InputArray(depth)
+                                          : j == 1 ? _InputArray(depthRow)
+                                                   : _InputArray(depthFloat);
+            shading::render(vertForms[i], j == 1 ? _InputArray(facesDouble) : _InputArray(faces),
+                            j == 1 ? _InputArray(colorsDouble) : _InputArray(colors), depthForm,
+                            img, shading::SHADE_GOURAUD, size, Scalar::all(1.0));
             EXPECT_EQ(maxAbsDiff(img, expected), 0.0)
                 << "vertex form " << i << ", other forms " << j;
         }

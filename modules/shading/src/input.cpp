@@ -316,6 +316,20 @@ void readDepths(InputArray arr, const char* argName, int expectedCount, std::vec
         readItems(arr, argName, expectedCount, out, pending);
 }
 
+const float* readDepthFloats(InputArray arr, const char* argName, int expectedCount,
+                             std::vector<double>& storage, PendingConversions* pending)
+{
+    const Mat m = arr.getMat();
+    // As readRows3: matrices and vectors only.
+    if (m.empty() || m.depth() != CV_32F || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+        readDepths(arr, argName, expectedCount, storage, pending);
+        return nullptr;
+    }
+    countRows(m, argName, 1, expectedCount);
+    storage.clear();
+    return m.ptr<float>();
+}
+
 void checkCanvas(InputOutputArray canvas, const char* argName)
 {
     if (canvas.empty())

@@ -138,6 +138,10 @@ Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vec
 converted into `storage`, as readPoints does. */
 PointRows readPointRows(InputArray arr, const char* argName, int expectedCount,
                         std::vector<Point2d>& storage, PendingConversions* pending);
+/** readDepths without a copy where the depths are continuous CV_32F: returns those (`storage`
+left empty); else null, having converted them into `storage` as readDepths does. */
+const float* readDepthFloats(InputArray arr, const char* argName, int expectedCount,
+                             std::vector<double>& storage, PendingConversions* pending);
 //! Depths: `expectedCount` values, or none when `arr` is empty.
 void readDepths(InputArray arr, const char* argName, int expectedCount, std::vector<double>& out,
                 PendingConversions* pending = nullptr);

@@ -606,6 +606,8 @@ struct MeshData {
     //! Every colour is within +-kGouraudColorLimit (gouraudInRange); false when not known.
     bool colorsInGouraudRange = false;
     std::vector<double> depth;  //!< one per vertex, or empty: draw in face order (or by faceDepth)
+    //! The caller's depths (continuous CV_32F), read where they are (`depth` is then empty).
+    const float* depthFloats = nullptr;
     //! One per face, or empty: the painter's key of each face instead of its vertices' mean
     //! depth (3D: the mean camera depth of the face a clipped piece comes from).
     std::vector<double> faceDepth;
@@ -804,6 +806,14 @@ inline v_float64x4 gatherDoubles(const double* tab, const int* idx)
     const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
     return v_float64x4(_mm256_mask_i32gather_pd(
         _mm256_setzero_pd(), tab, _mm_loadu_si128(reinterpret_cast<const __m128i*>(idx)), all, 8));
+}
+
+//! tab[idx[0..3]] as doubles (float to double is exact).
+inline v_float64x4 gatherFloatsAsDoubles(const float* tab, const int* idx)
+{
+    const __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    return v_float64x4(_mm256_cvtps_pd(_mm_mask_i32gather_ps(
+        _mm_setzero_ps(), tab, _mm_loadu_si128(reinterpret_cast<const __m128i*>(idx)), all, 4)));
 }
 #endif
 
@@ -1067,7 +1077,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     const int faceCount = int(mesh.faces.size());
     const bool byFaceDepth = !mesh.faceDepth.empty();
     const bool depthTested = options.depthTested;
-    const bool byDepth = !mesh.depth.empty() || byFaceDepth;
+    const bool byDepth = !mesh.depth.empty() || mesh.depthFloats || byFaceDepth;
     const int bandShift = kBandRowsLog2;
     const int bandRows = 1 << bandShift;
     const int paintShift = paintRowsLog2For(canvas);
@@ -1150,6 +1160,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         const int shift = bandShift, rowsPerBand = bandRows;
         const FixedPoint* const vertexAt = snapped;
         const double* const vertexDepth = mesh.depth.data();
+        const float* const vertexDepthFloats = mesh.depthFloats;  // else vertexDepth
+        auto depthOf = [vertexDepth, vertexDepthFloats](int v) {
+            return vertexDepthFloats ? double(vertexDepthFloats[v]) : vertexDepth[v];
+        };
         const double* const givenKey = mesh.faceDepth.data();
         double* const faceKey = depths.data();
         SampleBox* const faceBox = boxes.data();
@@ -1201,8 +1215,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 if constexpr (decltype(kByFaceDepth)::value) {
                     key = givenKey[i];
                 } else {
-                    const double d0 = vertexDepth[f[0]], d1 = vertexDepth[f[1]],
-                                 d2 = vertexDepth[f[2]];
+                    const double d0 = depthOf(f[0]), d1 = depthOf(f[1]), d2 = depthOf(f[2]);
                     key = (d0 + d1 + d2) / 3.0;  // NaN if any is
                     if (decltype(kDepthTested)::value && !std::isnan(key))
                         key = std::min({d0, d1, d2});
@@ -1266,9 +1279,14 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         if constexpr (decltype(kByFaceDepth)::value) {
                             key = v256_load(givenKey + i + h);
                         } else {
-                            const v_float64x4 d0 = gatherDoubles(vertexDepth, corner[0] + h),
-                                              d1 = gatherDoubles(vertexDepth, corner[1] + h),
-                                              d2 = gatherDoubles(vertexDepth, corner[2] + h);
+                            auto depthsAt = [&](const int* vertices) {
+                                return vertexDepthFloats
+                                           ? gatherFloatsAsDoubles(vertexDepthFloats, vertices)
+                                           : gatherDoubles(vertexDepth, vertices);
+                            };
+                            const v_float64x4 d0 = depthsAt(corner[0] + h),
+                                              d1 = depthsAt(corner[1] + h),
+                                              d2 = depthsAt(corner[2] + h);
                             key = (d0 + d1 + d2) / third;  // NaN if any is
                             if (decltype(kDepthTested)::value)  // the mean stays where NaN
                                 key = v_select(key == key, v_min(v_min(d0, d1), d2), key);

@@ -81,7 +81,7 @@ MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inp
     } else {
         mesh.colors = readRows3(vcolors, "vcolors", count, mesh.colorStorage, &pending);
     }
-    readDepths(depth, "depth", count, mesh.depth, &pending);
+    mesh.depthFloats = readDepthFloats(depth, "depth", count, mesh.depth, &pending);
     // Last: runs the conversions.
     mesh.faces = readFaceRows(faces, "faces", count, mesh.faceStorage, &pending);
     mesh.colorsInGouraudRange = shadeType == SHADE_GOURAUD && !colorOutOfRange.load();
