@@ -200,12 +200,19 @@ void readVectors(InputArray arr, const char* argName, int expectedCount, std::ve
     readItems(arr, argName, expectedCount, out, pending, check);
 }
 
+/** Whether `arr` (whose Mat is m) holds continuous CV_32F values the band pass may read where
+they are: matrices and vectors only, whose memory is the caller's, not a mapping that ends with
+m. */
+static bool readableInPlace(InputArray arr, const Mat& m)
+{
+    return m.depth() == CV_32F && m.isContinuous() && (arr.isMat() || arr.isVector());
+}
+
 Rows3 readRows3(InputArray arr, const char* argName, int expectedCount, std::vector<Vec3d>& storage,
                 PendingConversions* pending, std::atomic<bool>* nonFinite)
 {
     const Mat m = arr.getMat();
-    // Matrices and vectors only: their memory is the caller's, not a mapping that ends with m.
-    if (m.depth() != CV_32F || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+    if (!readableInPlace(arr, m)) {
         readVectors(arr, argName, expectedCount, storage, pending, nonFinite);
         return Rows3(storage);
     }
@@ -223,8 +230,7 @@ PointRows readPointRows(InputArray arr, const char* argName, int expectedCount,
                         std::vector<Point2d>& storage, PendingConversions* pending)
 {
     const Mat m = arr.getMat();
-    // As readRows3: matrices and vectors only.
-    if (m.depth() != CV_32F || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+    if (!readableInPlace(arr, m)) {
         readPoints(arr, argName, expectedCount, storage, pending);
         return PointRows(storage);
     }
@@ -320,8 +326,7 @@ const float* readDepthFloats(InputArray arr, const char* argName, int expectedCo
                              std::vector<double>& storage, PendingConversions* pending)
 {
     const Mat m = arr.getMat();
-    // As readRows3: matrices and vectors only.
-    if (m.empty() || m.depth() != CV_32F || !m.isContinuous() || !(arr.isMat() || arr.isVector())) {
+    if (m.empty() || !readableInPlace(arr, m)) {
         readDepths(arr, argName, expectedCount, storage, pending);
         return nullptr;
     }
