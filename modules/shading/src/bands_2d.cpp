@@ -29,11 +29,12 @@ void drawMeshAs(Mat& canvas, const MeshData& mesh, int shadeType, const Scalar* 
                         fill);
         return;
     }
-    // With every colour in range (checked as they were read), no face checks its own.
+    // Colours in double (readMesh converts them for Gouraud); with every one in range
+    // (checked as they were read), no face checks its own.
+    CV_DbgAssert(mesh.colors.empty() || mesh.colors.doubles());
     drawMeshInBands(
         canvas, mesh,
-        VertexColorShaders<GouraudShader<T>>{mesh.colors.doubles(), mesh.colorsInGouraudRange,
-                                             mesh.colors.floats()},
+        VertexColorShaders<GouraudShader<T>>{mesh.colors.doubles(), mesh.colorsInGouraudRange},
         fill);
 }
 

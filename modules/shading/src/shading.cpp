@@ -71,9 +71,9 @@ MeshData& readMesh(InputArray verts2d, InputArray faces, InputArray vcolors, Inp
     PendingConversions pending;
     mesh.vertices = readPointRows(verts2d, "verts2d", -1, mesh.vertexStorage, &pending);
     const int count = int(mesh.vertices.size());
-    // Flat: the caller's float colours read where they are (biggrid2048 0.94-0.95x the time).
-    // Gouraud: converted, its range check riding on the conversion (see drawMeshAs); read
-    // where they are, with the check a pass of its own, it took 1.03x at 2 threads.
+    // Flat: the caller's float colours read where they are (biggrid2048 0.91-0.93x the time).
+    // Gouraud: converted, its range check riding on the conversion (see drawMeshAs); its
+    // shaders reading floats took 1.03-1.05x (VertexColorShaders::withColors).
     std::atomic<bool> colorOutOfRange{false};
     if (shadeType == SHADE_GOURAUD) {
         readColors(vcolors, "vcolors", count, mesh.colorStorage, &pending, &colorOutOfRange);
