@@ -2257,17 +2257,31 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 skipped face is already nearer). Where one of those meets a sample of equal
                 depth, the order matters: the band is drawn again, all of it in face order. */
                 splitFaces.resize(orderSize);
-                size_t inClass[2] = {0, 0};
-                double depthSum[2] = {0, 0};
-                const uint8_t* const isClockwise = work.clockwise.data();
-                for (size_t j = 0; j < orderSize; j++) {
-                    // Counterclockwise faces from the list's start, clockwise from its end,
-                    // each in face order.
-                    const int face = inFaceOrderAt(j);
-                    const int c = isClockwise[face];
-                    depthSum[c] += keyOf[face];
-                    splitFaces[c ? orderSize - 1 - inClass[1] : inClass[0]] = face;
-                    inClass[c]++;
+                size_t inClass[2];
+                double depthSum[2];
+                {
+                    // Counts and sums in registers, without a branch on the winding: indexed
+                    // by it, they went through memory, a store and a reload per face.
+                    const uint8_t* const isClockwise = work.clockwise.data();
+                    const double* const faceKey = keyOf;
+                    int* const split = splitFaces.data();
+                    size_t clockwise = 0;
+                    double sumOf[2] = {0, 0};  // counterclockwise, clockwise
+                    for (size_t j = 0; j < orderSize; j++) {
+                        // Counterclockwise faces from the list's start, clockwise from its end,
+                        // each in face order.
+                        const int face = inFaceOrderAt(j);
+                        const bool c = isClockwise[face] != 0;
+                        const double key = faceKey[face];
+                        sumOf[0] += c ? 0.0 : key;
+                        sumOf[1] += c ? key : 0.0;
+                        split[c ? orderSize - 1 - clockwise : j - clockwise] = face;
+                        clockwise += c;
+                    }
+                    inClass[0] = orderSize - clockwise;
+                    inClass[1] = clockwise;
+                    depthSum[0] = sumOf[0];
+                    depthSum[1] = sumOf[1];
                 }
                 // Comparing the means (false where a sum is not finite: any order is exact).
                 const int nearClass =
