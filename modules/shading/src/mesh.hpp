@@ -479,6 +479,26 @@ inline int nextWhereUntouched(const double* depths, int x, int end)
     return x;
 }
 
+/** Bits 0-3: which of depths[0 .. 4) are not nearer than `depth` (`!(d < depth)`: untouched
+samples too). Reads four samples whatever the box it tests: the caller masks the bits. */
+__attribute__((always_inline)) inline unsigned notNearerFour(const double* depths, double depth)
+{
+#if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
+#if CV_AVX2
+    const int nearer = v_signmask(v256_load(depths) < v256_setall_f64(depth));
+#else
+    const v_float64x2 d = v_setall_f64(depth);
+    const int nearer = v_signmask(v_load(depths) < d) | v_signmask(v_load(depths + 2) < d) << 2;
+#endif
+    return ~unsigned(nearer) & 0xfu;
+#else
+    unsigned bits = 0;
+    for (int i = 0; i < 4; i++)
+        bits |= unsigned(!(depths[i] < depth)) << i;
+    return bits;
+#endif
+}
+
 /** Sets the pixels of `row` whose samples in `depths` (a face-order band's row of `columns`) no
 face took to `color`: the background, painted after the faces instead of under them, so that a
 covered pixel is written once. */
@@ -2156,7 +2176,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         for (int y = y0; y < y1; y++)
                             fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
                     if (byDepth) {
-                        bandDepths.resize(size_t(y1 - y0) * columns);
+                        // Three past the last row: notNearerFour reads four at a box's start.
+                        bandDepths.resize(size_t(y1 - y0) * columns + 3);
                         std::fill(bandDepths.begin(), bandDepths.end(), kUntouchedDepth);
                     }
                 };
@@ -2298,6 +2319,16 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     const SampleBox& box = faceBox[face];
                     const double depth = keyOf[face];
                     const int r0 = std::max(box.rowBegin, y0), r1 = std::min(box.rowEnd, y1);
+                    const int boxColumns = box.colLast - box.colFirst + 1;
+                    if (unsigned(boxColumns - 1) < 4u) {
+                        // Four samples a row, with no early exit: most boxes tested are hidden,
+                        // so read whole.
+                        unsigned notNearer = 0;
+                        const double* row = nearest + size_t(r0 - y0) * columns + box.colFirst;
+                        for (int y = r0; y < r1; y++, row += columns)
+                            notNearer |= notNearerFour(row, depth);
+                        return (notNearer & ((1u << boxColumns) - 1)) == 0;
+                    }
                     for (int y = r0; y < r1; y++) {
                         const double* const row = nearest + size_t(y - y0) * columns;
                         for (int x = box.colFirst; x <= box.colLast; x++)
