@@ -2278,32 +2278,27 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 skipped face is already nearer). Where one of those meets a sample of equal
                 depth, the order matters: the band is drawn again, all of it in face order. */
                 splitFaces.resize(orderSize);
-                size_t inClass[2];
-                double depthSum[2];
+                // The count and sums in registers, without a branch on the winding: indexed by
+                // it, they went through memory, a store and a reload per face.
+                size_t clockwise = 0;
+                double depthSum[2] = {0, 0};  // counterclockwise, clockwise
                 {
-                    // Counts and sums in registers, without a branch on the winding: indexed
-                    // by it, they went through memory, a store and a reload per face.
                     const uint8_t* const isClockwise = work.clockwise.data();
                     const double* const faceKey = keyOf;
                     int* const split = splitFaces.data();
-                    size_t clockwise = 0;
-                    double sumOf[2] = {0, 0};  // counterclockwise, clockwise
                     for (size_t j = 0; j < orderSize; j++) {
                         // Counterclockwise faces from the list's start, clockwise from its end,
                         // each in face order.
                         const int face = inFaceOrderAt(j);
                         const bool c = isClockwise[face] != 0;
                         const double key = faceKey[face];
-                        sumOf[0] += c ? 0.0 : key;
-                        sumOf[1] += c ? key : 0.0;
+                        depthSum[0] += c ? 0.0 : key;
+                        depthSum[1] += c ? key : 0.0;
                         split[c ? orderSize - 1 - clockwise : j - clockwise] = face;
                         clockwise += c;
                     }
-                    inClass[0] = orderSize - clockwise;
-                    inClass[1] = clockwise;
-                    depthSum[0] = sumOf[0];
-                    depthSum[1] = sumOf[1];
                 }
+                const size_t inClass[2] = {orderSize - clockwise, clockwise};
                 // Comparing the means (false where a sum is not finite: any order is exact).
                 const int nearClass =
                     depthSum[1] * double(inClass[0]) < depthSum[0] * double(inClass[1]) ? 1 : 0;

@@ -543,8 +543,8 @@ struct GouraudShader {
     static constexpr bool kReadsWeights = true;
     static constexpr bool kMayShadePerPixel = std::is_same<Weights, ExactWeights>::value;
     //! A small face's colours have a copy of channel 2 in a fourth lane, so that each of its
-    //! rows' bases reads a vertex's channels in one 4-lane load (grid512 Gouraud 0.86-0.89x the
-    //! time; with the fourth lane for every face, scenes of big faces took 1.01x).
+    //! rows' bases reads a vertex's channels in one 4-lane load (grid512 Gouraud 0.87-0.92x the
+    //! time; with the fourth lane for every face, random512's big faces took 1.01x).
     static constexpr int kColorLanes = std::is_same<Weights, SmallWeights>::value ? 4 : 3;
     //! color[vertex][channel], vertices in the setup's canonical order.
     double color[3][kColorLanes];
