@@ -2414,6 +2414,15 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 tile.resize(size_t(bandRows) * rowBytes);
                 bandData = tile.data();
                 bandStep = rowBytes;
+            } else if (background) {
+                // The background first, under the faces: the fill brings the band's lines into
+                // cache for the faces' runs, and no pass at the end looks for the samples no
+                // face claimed (that pass's stores found the lines gone again: the demo
+                // 0.92-0.94x the time at one thread, random512 0.92-0.95x, random1024
+                // 0.89-0.91x).
+                for (int y = y0; y < y1; y++)
+                    fillPixels(reinterpret_cast<T*>(pixels + size_t(y) * rowStep), 0, columns,
+                               background->val);
             } else {
                 // Visible runs land all over the band's rows: asking for all of its lines now
                 // lets the memory system fetch them in parallel, not one store miss at a time.
@@ -2507,7 +2516,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             keptFaces.data() + size_t(y - y0) * columns,
                             keptWeights.data() + size_t(y - y0) * columns * 2,
                             coverage.row(y - y0), columns);
-            if (background) {
+            if (background && streamBands) {  // the tile's background, where no face drew
                 for (int y = y0; y < y1; y++) {
                     T* row = reinterpret_cast<T*>(bandData + size_t(y - y0) * bandStep);
                     // Claiming the whole row visits exactly what no face covered.
