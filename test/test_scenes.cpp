@@ -93,14 +93,18 @@ TEST_P(ShadingScenes, TallCanvasEqualsReference)
 
 // A canvas of 16 MB or more (2048 x 700 float pixels): front-to-back bands are drawn in a scratch
 // tile and streamed out to the canvas (see kStreamedCanvasBytes), in bands of 64 rows (or their
-// parts).
+// parts). The tile gets its background before the faces where they cover it a few layers deep,
+// after them where they cover it all: 1.5 layers, 4 and 12 (bands of both kinds in one image).
 TEST(ShadingScenesBig, StreamedCanvasEqualsReference)
 {
     const Size size(2048, 700);
-    shading_perf::Scene scene{"random2048x700", size, shading_perf::makeRandom(2000, 4.0)};
-    scene.mesh.verts2d.col(0) *= size.width;  // unit square -> canvas
-    scene.mesh.verts2d.col(1) *= size.height;
-    expectEqualReference(scene, 1, 1);
+    for (double layers : {1.5, 4.0, 12.0}) {
+        SCOPED_TRACE(testing::Message() << layers << " layers");
+        shading_perf::Scene scene{"random2048x700", size, shading_perf::makeRandom(2000, layers)};
+        scene.mesh.verts2d.col(0) *= size.width;  // unit square -> canvas
+        scene.mesh.verts2d.col(1) *= size.height;
+        expectEqualReference(scene, 1, 1);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(BenchmarkScenes, ShadingScenes,
