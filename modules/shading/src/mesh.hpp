@@ -864,8 +864,8 @@ inline void narrowPointWords(const FixedPoint* in, uint64_t* out, int count)
 
 /** Snaps in[0 .. count) (Point2d, or the caller's Point2f) into out (snapToGrid, bit for bit);
 returns whether every vertex is within kNarrowPixels on both axes (NaN is not), so lies on the
-narrow grid, and writes each one's narrowPointWords word to narrowOut. Only the AVX2 build, whose
-first pass uses those, checks and writes them: the baseline returns false. */
+narrow grid, and writes each one's narrowPointWords word to narrowOut unless it is null. Only the
+AVX2 build, whose first pass uses those, checks and writes them: the baseline returns false. */
 template <typename Point>
 inline bool snapPoints(const Point* in, FixedPoint* out, [[maybe_unused]] uint64_t* narrowOut,
                        int count)
@@ -903,16 +903,18 @@ inline bool snapPoints(const Point* in, FixedPoint* out, [[maybe_unused]] uint64
         const __m256i snappedPair = _mm256_blendv_epi8(invalid, bits, _mm256_castpd_si256(valid));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), snappedPair);
         // narrowPointWords' two words: the low 32 bits of each coordinate.
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(narrowOut + i),
-                         _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
-                             snappedPair, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6))));
+        if (narrowOut)
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(narrowOut + i),
+                             _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+                                 snappedPair, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6))));
     }
     narrow = _mm256_movemask_pd(allNarrow) == 0xf;
 #endif
     for (; i < count; i++) {
         out[i] = snapToGrid(Point2d(in[i].x, in[i].y));
 #if OPENCV_SHADING_BOX_EIGHT
-        narrowPointWords(out + i, narrowOut + i, 1);
+        if (narrowOut)
+            narrowPointWords(out + i, narrowOut + i, 1);
         narrow &= std::abs(in[i].x) < kNarrowPixels && std::abs(in[i].y) < kNarrowPixels;
 #endif
     }
@@ -1159,7 +1161,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         int64_t(std::max(size.width, size.height)) * kSubpixelOne < kNarrowLimit;
     std::atomic<bool> allNarrow(boxEightFits);
     const int passCount = boxEightFits ? pointCount : vertexCount;
-    work.narrowPoints.resize(OPENCV_SHADING_BOX_EIGHT ? pointCount : 0);  // snapPoints fills it
+    work.narrowPoints.resize(boxEightFits ? pointCount : 0);
     parallel_for_(Range(0, (passCount + kVertexChunk - 1) / kVertexChunk), [&](const Range& r) {
         const int end = std::min(passCount, r.end * kVertexChunk);
         const int begin = r.start * kVertexChunk;
@@ -1167,7 +1169,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         if (!snappedGiven) {
             // The caller's floats snapped where they are: no copy of them in double.
             FixedPoint* const out = work.snapped.data() + begin;
-            uint64_t* const narrowOut = work.narrowPoints.data() + begin;
+            uint64_t* const narrowOut = boxEightFits ? work.narrowPoints.data() + begin : nullptr;
             narrow = vertexFloats
                          ? snapPoints(vertexFloats + begin, out, narrowOut, end - begin)
                          : snapPoints(mesh.vertices.doubles() + begin, out, narrowOut, end - begin);
