@@ -1152,12 +1152,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     work.snapped.resize(vertexCount);
     const FixedPoint* const snapped = snappedGiven ? mesh.snapped.data() : work.snapped.data();
     constexpr int kVertexChunk = 2048;
-    // The first pass's 8-face steps read the low 32 bits of each coordinate, which hold it where
-    // every vertex is on the narrow grid (checked here), and take indices times four in 32-bit
-    // lanes, on a canvas whose every box quantity fits them.
+    // The first pass's 8-face steps read the low 32 bits of each coordinate (narrowPointWords),
+    // which hold it where every vertex is on the narrow grid (checked here), on a canvas whose
+    // every box quantity fits 32-bit lanes.
     const int pointCount = snappedGiven ? int(mesh.snapped.size()) : vertexCount;
     const bool boxEightFits =
-        OPENCV_SHADING_BOX_EIGHT && pointCount < (1 << 29) &&
+        OPENCV_SHADING_BOX_EIGHT &&
         int64_t(std::max(size.width, size.height)) * kSubpixelOne < kNarrowLimit;
     std::atomic<bool> allNarrow(boxEightFits);
     const int passCount = boxEightFits ? pointCount : vertexCount;
@@ -1312,7 +1312,6 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const int* const faceWords = reinterpret_cast<const int*>(mesh.faces.data());
             const long long* const pointPairs =
                 reinterpret_cast<const long long*>(work.narrowPoints.data());
-            static_assert(sizeof(FixedPoint) == 16, "four 32-bit words, x's low one first");
             const v_int32x8 laneBit(1, 2, 4, 8, 16, 32, 64, 128);
             const v_int32x8 roundUp = v256_setall_s32(int(kSubpixelOne - 1));
             const v_int32x8 zero = v256_setzero_s32(), one = v256_setall_s32(1);
