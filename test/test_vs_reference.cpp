@@ -1173,18 +1173,20 @@ TEST(ShadingVsReference, DrawMeshNeedlesAmongSmallFacesInFaceOrder)
 
 namespace {
 
-// Two layers of a jittered grid of 2 x 2-pixel cells a little beyond the canvas, the second
-// shifted by a fraction of a cell and wound the other way, their faces interleaved in a random
-// order: a closed surface seen with its back faces, whose bands of more than 4,096 faces the
-// library draws in face order, the nearer winding first and then the other's faces not hidden
-// by it (mesh.hpp). Depths: Random, the front layer in [0, 1) and the back one in [0.5, 1.5)
-// (some back faces show); Ties, the front at 1 and the back's vertices at 1 or 2 (faces of equal
-// mean depth meet, whose order decides); Infinite, each vertex either finite or infinite.
-Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths)
+// Two layers of a jittered grid of `cell` x `cell`-pixel cells a little beyond the canvas, the
+// second shifted by a fraction of a cell and wound the other way, their faces interleaved in a
+// random order: a closed surface seen with its back faces, whose bands of more than 4,096 faces
+// the library draws in face order, the nearer winding first and then the other's faces not
+// hidden by it (mesh.hpp). Depths: Random, the front layer in [0, 1) and the back one in
+// [0.5, 1.5) (some back faces show); Ties, the front at 1 and the back's vertices at 1 or 2
+// (faces of equal mean depth meet, whose order decides); Infinite, each vertex either finite or
+// infinite. Cells of 2 pixels give boxes of 2-4 columns, cells of 5 boxes of 5-8 columns and up
+// to 8 rows.
+Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths, int cell = 2)
 {
     Mesh m;
     const double inf = std::numeric_limits<double>::infinity();
-    const int nx = size.width / 2 + 2, ny = size.height / 2 + 2;
+    const int nx = size.width / cell + 2, ny = size.height / cell + 2;
     std::vector<cv::Vec3i> layerFaces[2];
     for (int layer = 0; layer < 2; layer++) {
         const int first = (int)m.verts.size();
@@ -1193,7 +1195,7 @@ Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths)
             for (int i = 0; i <= nx; i++) {
                 const Point2d jitter(std::round(rng.uniform(-0.4, 0.4) * 4) / 4,
                                      std::round(rng.uniform(-0.4, 0.4) * 4) / 4);
-                m.verts.push_back(Point2d(2 * i - 2, 2 * j - 2) + shift + jitter);
+                m.verts.push_back(Point2d(cell * (i - 1), cell * (j - 1)) + shift + jitter);
                 m.colors.push_back(randomColour(rng, 0, 1));
                 double d = 0;
                 if (depths == Depths::Random)
@@ -1230,12 +1232,20 @@ TEST(ShadingVsReference, DrawMeshClosedSurfaceInFaceOrder)
 {
     cv::RNG rng(scaledSeed(151));
     // One band of 64 rows (10,240 faces and more), and two, the second partly on the canvas;
-    // every band whole, then in parts.
-    for (const cv::Size size : { cv::Size(160, 64), cv::Size(150, 100) })
+    // every band whole, then in parts. Then bigger faces: one band of 5,000 faces whose boxes
+    // are 5-8 samples wide.
+    struct Surface {
+        cv::Size size;
+        int cell;
+    };
+    for (const Surface surface : { Surface{ cv::Size(160, 64), 2 },
+                                   Surface{ cv::Size(150, 100), 2 },
+                                   Surface{ cv::Size(400, 64), 5 } })
         for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
             for (bool inParts : { false, true })
                 for (bool gouraud : { false, true }) {
-                    const Mesh m = closedSurfaceMesh(rng, size, depths);
+                    const cv::Size size = surface.size;
+                    const Mesh m = closedSurfaceMesh(rng, size, depths, surface.cell);
                     const shading_test::SplitBands split(inParts);
                     EXPECT_TRUE(meshMatches(m, size, CV_32FC3, gouraud))
                         << describeMesh(m, "drawMesh", gouraud, CV_32FC3) << " depths "

@@ -2217,8 +2217,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         for (int y = y0; y < y1; y++)
                             fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
                     if (byDepth) {
-                        // Three past the last row: notNearerFour reads four at a box's start.
-                        bandDepths.resize(size_t(y1 - y0) * columns + 3);
+                        // Seven past the last row: hiddenByNearer reads eight at a box's start.
+                        bandDepths.resize(size_t(y1 - y0) * columns + 7);
                         std::fill(bandDepths.begin(), bandDepths.end(), kUntouchedDepth);
                     }
                 };
@@ -2356,13 +2356,19 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     const double depth = keyOf[face];
                     const int r0 = std::max(box.rowBegin, y0), r1 = std::min(box.rowEnd, y1);
                     const int boxColumns = box.colLast - box.colFirst + 1;
-                    if (unsigned(boxColumns - 1) < 4u) {
-                        // Four samples a row, with no early exit: most boxes tested are hidden,
-                        // so read whole.
+                    if (unsigned(boxColumns - 1) < 8u) {
+                        // Four or eight samples a row, with no early exit: most boxes tested
+                        // are hidden, so read whole.
                         unsigned notNearer = 0;
                         const double* row = nearest + size_t(r0 - y0) * columns + box.colFirst;
-                        for (int y = r0; y < r1; y++, row += columns)
-                            notNearer |= notNearerFour(row, depth);
+                        if (boxColumns <= 4) {
+                            for (int y = r0; y < r1; y++, row += columns)
+                                notNearer |= notNearerFour(row, depth);
+                        } else {
+                            for (int y = r0; y < r1; y++, row += columns)
+                                notNearer |= notNearerFour(row, depth) |
+                                             notNearerFour(row + 4, depth) << 4;
+                        }
                         return (notNearer & ((1u << boxColumns) - 1)) == 0;
                     }
                     for (int y = r0; y < r1; y++) {
