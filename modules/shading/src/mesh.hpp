@@ -479,6 +479,52 @@ inline int nextWhereUntouched(const double* depths, int x, int end)
     return x;
 }
 
+/** Draws a small face's samples found in a block of rows kRowBits samples wide: bit
+kRowBits r + c is sample (firstColumn + c, firstRow + r). Each is tested and stored as
+paintSpan's tiny spans do (it takes the face where no nearer depth is stored), without a branch:
+where a closed surface's faces overlap, which samples take a face is not predictable, and a
+sample that does not take it stores into a discarded pixel and depth. A pen per row, from the
+row's first sample as the walk's span starts there, where the shader reads weights (Gouraud);
+one for the face otherwise. nearestAt, pixelAt: the block's first sample in the band's depths
+and on the canvas; depthOffset and pixelOffset: each bit's offsets from them, in bytes. */
+template <int kRowBits, bool kPenPerRow, typename T, typename SmallShader>
+__attribute__((always_inline)) inline void putBlockSamples(uint64_t samples,
+                                                           const SmallShader& shader,
+                                                           int firstRow, int firstColumn,
+                                                           double depth, uchar* nearestAt,
+                                                           uchar* pixelAt,
+                                                           const ptrdiff_t* depthOffset,
+                                                           const ptrdiff_t* pixelOffset)
+{
+    constexpr uint64_t kRow = (uint64_t(1) << kRowBits) - 1;
+    // GCC 12 makes the discarded stores a branch over them, never taken where each sample is
+    // drawn once (the million-face grid).
+    double discardedDepth;
+    T discardedPixel[3];
+    auto put = [&](uint64_t bits, const auto& pen) {
+        for (; bits; bits &= bits - 1) {
+            const unsigned bit = unsigned(__builtin_ctzll(bits));
+            double* const nearest = reinterpret_cast<double*>(nearestAt + depthOffset[bit]);
+            const bool takes = !(*nearest < depth);
+            *(takes ? nearest : &discardedDepth) = depth;
+            pen.put(takes ? reinterpret_cast<T*>(pixelAt + pixelOffset[bit]) : discardedPixel,
+                    firstColumn + int(bit % kRowBits));
+        }
+    };
+    const TriangleSetup unread{};  // a small face's shader reads no setup
+    if constexpr (!kPenPerRow) {
+        put(samples, shader.pen(unread, firstRow, firstColumn));
+    } else {
+        while (samples) {
+            const int first = __builtin_ctzll(samples);
+            const uint64_t inRow = samples & (kRow << (first - first % kRowBits));
+            put(inRow, shader.pen(unread, firstRow + first / kRowBits,
+                                  firstColumn + first % kRowBits));
+            samples &= ~inRow;
+        }
+    }
+}
+
 /** Bits 0-3: which of depths[0 .. 4) are not nearer than `depth` (`!(d < depth)`: untouched
 samples too). Reads four samples whatever the box it tests: the caller masks the bits. */
 __attribute__((always_inline)) inline unsigned notNearerFour(const double* depths, double depth)
@@ -1619,6 +1665,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         int rowLeft[64];  // pixels of each band row not yet final
         // Whether this band's batches may go to paintTinyBlocks (set per band).
         [[maybe_unused]] bool tinyBlocksBand = false;
+        // Whether paintSmallFaces draws its small faces by paintSampleBlock: while it paints
+        // with paintSpan itself (not a closed surface's second winding, whose spans check ties).
+        [[maybe_unused]] bool sampleBlocks = false;
+        // paintSampleBlock's bit 8 r + c: its offsets in bytes from the block's first sample,
+        // in the band's depths and on the canvas.
+        [[maybe_unused]] ptrdiff_t blockDepthOffset[64], blockPixelOffset[64];
+        for (int bit = 0; bit < 64; bit++) {
+            blockDepthOffset[bit] =
+                (ptrdiff_t(bit >> 3) * columns + (bit & 7)) * ptrdiff_t(sizeof(double));
+            blockPixelOffset[bit] = ptrdiff_t(bit >> 3) * ptrdiff_t(rowStep) +
+                                    ptrdiff_t(bit & 7) * 3 * ptrdiff_t(sizeof(T));
+        }
         struct BatchFace {
             TriangleSetup triangle;
             Shader shader;
@@ -1661,6 +1719,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 tinyBlocksBand = way.inFaceOrder && byDepth && !way.nearWindingFirst &&
                                  bandArea[band] <= kTinyFaceSamples * double(faces);
             }
+            sampleBlocks = false;  // set where this band paints with paintSpan
             [[maybe_unused]] const bool smallFaces = way.smallFaces;
             const bool inFaceOrder = way.inFaceOrder, backToFront = way.backToFront;
             if (!part.whole()) {
@@ -1979,51 +2038,20 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         pixelOffset[bit] = ptrdiff_t(bit >> 2) * ptrdiff_t(rowStep) +
                                            ptrdiff_t(bit & 3) * 3 * ptrdiff_t(sizeof(T));
                     }
-                    const TriangleSetup unread{};  // the shader reads no setup
                     double* const nearestDepths = bandDepths.data();
                     const double* const faceKey = keyOf;
                     uchar* const canvasAt = pixels;
                     const size_t stepBytes = rowStep;
                     for (int i = 0; i < count; i++) {
-                        const double depth = faceKey[faces[i]];
-                        uchar* const nearestAt = inOneRegister(
-                            reinterpret_cast<uchar*>(nearestDepths + nearestIndex[i]));
                         const int firstColumn = sf.firstColumn[i];
-                        uchar* const pixelAt = inOneRegister(
-                            canvasAt + size_t(sf.firstRow[i]) * stepBytes +
-                            size_t(firstColumn) * 3 * sizeof(T));
-                        // A sample that does not take the face stores into these (GCC 12
-                        // makes that a branch over the stores, never taken on the million-face
-                        // grid, which draws each sample once). Row by row, a run at a time,
-                        // cost more.
-                        double discardedDepth;
-                        T discardedPixel[3];
-                        auto putSamples = [&](uint32_t samples, const auto& pen) {
-                            for (; samples; samples &= samples - 1) {
-                                const unsigned bit = unsigned(__builtin_ctz(samples));
-                                double* const nearest =
-                                    reinterpret_cast<double*>(nearestAt + depthOffset[bit]);
-                                const bool takes = !(*nearest < depth);
-                                *(takes ? nearest : &discardedDepth) = depth;
-                                pen.put(takes ? reinterpret_cast<T*>(pixelAt + pixelOffset[bit])
-                                              : discardedPixel,
-                                        firstColumn + int(bit & 3));
-                            }
-                        };
-                        if constexpr (!SmallShader::kReadsWeights) {  // one colour
-                            putSamples(uint32_t(block[i]),
-                                       sf.shader(i).pen(unread, sf.firstRow[i], firstColumn));
-                        } else {
-                            // A pen per row, from the row's first sample (bits 4 r to 4 r + 3).
-                            for (uint32_t rows = uint32_t(block[i]); rows;) {
-                                const int first = __builtin_ctz(rows);
-                                const uint32_t inRow = rows & (0xfu << (first & ~3));
-                                putSamples(inRow, sf.shader(i).pen(unread,
-                                                                   sf.firstRow[i] + (first >> 2),
-                                                                   firstColumn + (first & 3)));
-                                rows &= ~inRow;
-                            }
-                        }
+                        putBlockSamples<4, SmallShader::kReadsWeights, T>(
+                            uint32_t(block[i]), sf.shader(i), sf.firstRow[i], firstColumn,
+                            faceKey[faces[i]],
+                            inOneRegister(
+                                reinterpret_cast<uchar*>(nearestDepths + nearestIndex[i])),
+                            inOneRegister(canvasAt + size_t(sf.firstRow[i]) * stepBytes +
+                                          size_t(firstColumn) * 3 * sizeof(T)),
+                            depthOffset, pixelOffset);
                     }
                     return true;
                 }
@@ -2033,6 +2061,49 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             line: inlined, it cost the band loop's other paths 2-3%. (Gouraud's tiny faces lost
             7-18% on the grids here while they kept the one-face setup for their shaders; with
             smallWeightsEight they gain 20%.) */
+            /* A small face of `sf` (at most 8 columns) that spans at most 8 rows in the band,
+            drawn as paintSpan would draw its walk's spans: its samples found row by row with
+            one 8-lane test each, as walkSmallRows finds them, into one mask of 8 x 8 bits, then
+            tested and stored one at a time (putBlockSamples). One loop over the samples instead
+            of a span a row: the spans' lengths, 1 to 6 samples on the million-face sphere, are
+            not predictable. */
+            auto paintSampleBlock = [&](const SmallFaces& sf, int i, double depth) {
+                constexpr bool kSampleBlocks = std::is_same<T, float>::value &&
+                                               HasPen<SmallShader>::value &&
+                                               !SmallShader::kReadsWeights && kSmallLanes == 8;
+                if constexpr (kSampleBlocks) {
+                    if (!sf.shader(i).penFits())
+                        return false;
+                    const int firstRow = sf.firstRow[i], firstColumn = sf.firstColumn[i];
+                    SmallLanes at[3], step[3];
+                    for (int e = 0; e < 3; e++) {
+                        at[e] = smallLanesRamp(sf.at0[e][i], sf.perColumn[e][i]);
+                        step[e] = smallLanesAll(sf.perRow[e][i]);
+                    }
+                    const SmallLanes zero = smallLanesAll(0);
+                    uint64_t samples = 0;
+                    for (int r = 0, rows = sf.endRow[i] - firstRow; r < rows; r++) {
+                        samples |= uint64_t(unsigned(v_signmask((at[0] > zero) & (at[1] > zero) &
+                                                                (at[2] > zero))))
+                                   << (8 * r);
+                        for (int e = 0; e < 3; e++)
+                            at[e] += step[e];
+                    }
+                    const uint64_t onCanvas =
+                        (uint64_t(1) << std::min(8, columns - firstColumn)) - 1;
+                    putBlockSamples<8, SmallShader::kReadsWeights, T>(
+                        samples & onCanvas * 0x0101010101010101u, sf.shader(i), firstRow,
+                        firstColumn, depth,
+                        reinterpret_cast<uchar*>(bandDepths.data() +
+                                                 size_t(firstRow - y0) * columns + firstColumn),
+                        pixels + size_t(firstRow) * rowStep + size_t(firstColumn) * 3 * sizeof(T),
+                        blockDepthOffset, blockPixelOffset);
+                    return true;
+                } else {
+                    (void)sf, (void)i, (void)depth;
+                    return false;
+                }
+            };
             auto paintSmallFaces = [&](const int* faces, int count,
                                        const auto& paintSpanGiven) __attribute__((noinline)) {
                 if (tinyBlocksBand && paintTinyBlocks(faces, count))
@@ -2041,6 +2112,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 SmallFaces sf;
                 setUpSmallFaces(faces, count, sf, false);
                 const TriangleSetup unread{};  // the shader reads no setup
+                const bool blocks = sampleBlocks && byDepth;
                 for (int i = 0; i < count; i++) {
                     const int face = faces[i];
                     const double depth = byDepth ? keyOf[face] : 0.0;
@@ -2050,6 +2122,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         if (sf.firstRow[i] >= sf.endRow[i])
                             continue;
                         const SmallShader& shader = sf.shader(i);
+                        if (blocks && sf.endRow[i] - sf.firstRow[i] <= 8 &&
+                            paintSampleBlock(sf, i, depth))
+                            continue;
                         const int32_t faceAt0[3] = {sf.at0[0][i], sf.at0[1][i], sf.at0[2][i]};
                         const int32_t faceColumn[3] = {sf.perColumn[0][i], sf.perColumn[1][i],
                                                        sf.perColumn[2][i]};
@@ -2306,6 +2381,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 auto inFaceOrderAt = [&](size_t j) {  // entries are in decreasing face order
                     return entryFace(order[orderSize - 1 - j]);
                 };
+                sampleBlocks = true;
                 if (!way.nearWindingFirst) {
                     paintFaces(orderSize, inFaceOrderAt, always, paintSpan, never);
                     paintBackground();
@@ -2379,6 +2455,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                     }
                     return true;
                 };
+                sampleBlocks = false;
                 bool tied = false;
                 auto paintSpanTieChecked = [paintSpan, &tied, nearest, y0, columns](
                                                const TriangleSetup& t, const auto& shader,
@@ -2395,6 +2472,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                            [&] { return tied; });
                 if (tied) {
                     clearBand();
+                    sampleBlocks = true;
                     paintFaces(orderSize, inFaceOrderAt, always, paintSpan, never);
                 }
                 continue;
