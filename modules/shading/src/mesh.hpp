@@ -6,9 +6,9 @@
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw
 // is painted: small faces in face order, unsorted, each sample keeping the nearest face so far
 // (the later on a tie; tiny flat faces' samples found 8 faces at a time in 4 x 4 blocks), bigger
-// ones sorted, back to front; a closed surface's band of many small
-// faces also in face order, but its nearer winding first and the other's faces only where not
-// yet hidden. One with more overdraw (or a closed surface's band of few faces) is sorted and
+// ones sorted, back to front; a closed surface's band of many small faces also in face order,
+// but its nearer winding first (a flat face's samples found in one 8 x 8 block) and the other's
+// faces only where not yet hidden. One with more overdraw (or a closed surface's band of few faces) is sorted and
 // built front to back, where a coverage bit mask keeps the first (frontmost) write of each pixel:
 // exactly what the painter's algorithm leaves visible, with each pixel written once, and a face
 // whose sample box is already final is skipped before setup. Per face, only a depth, a sample box
@@ -1665,8 +1665,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
         int rowLeft[64];  // pixels of each band row not yet final
         // Whether this band's batches may go to paintTinyBlocks (set per band).
         [[maybe_unused]] bool tinyBlocksBand = false;
-        // Whether paintSmallFaces draws its small faces by paintSampleBlock: while it paints
-        // with paintSpan itself (not a closed surface's second winding, whose spans check ties).
+        // Whether paintSmallFaces draws its small faces by paintSampleBlock: while a closed
+        // surface's band draws its nearer winding, or all of it again after a tie (the other
+        // winding's spans check ties).
         [[maybe_unused]] bool sampleBlocks = false;
         // paintSampleBlock's bit 8 r + c: its offsets in bytes from the block's first sample,
         // in the band's depths and on the canvas.
@@ -2381,7 +2382,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 auto inFaceOrderAt = [&](size_t j) {  // entries are in decreasing face order
                     return entryFace(order[orderSize - 1 - j]);
                 };
-                sampleBlocks = true;
+                // Where faces never overlap (a grid), the walk's span lengths repeat and it is
+                // the cheaper way (grid512 flat 1.02-1.05x through the sample blocks).
+                sampleBlocks = way.nearWindingFirst;
                 if (!way.nearWindingFirst) {
                     paintFaces(orderSize, inFaceOrderAt, always, paintSpan, never);
                     paintBackground();
