@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -477,6 +478,84 @@ TEST(DrawMesh3d, SameImageForAnyThreadCount)
                 EXPECT_EQ(cv::norm(ids, firstIds, NORM_INF), 0);
             }
         }
+    setNumThreads(threads);
+}
+
+// Flat faces in painter's order with no depth or id output are drawn by the 2D flat shader, set
+// to each face's colour (the engine's sample blocks then serve them); with an id output they are
+// drawn by the 3D surface shader, which computes each sample's depth. A closed sphere of tiny
+// faces, its back faces kept (the closed-surface bands, faces of up to 8 x 8 samples), and a
+// heightfield of faces within 4 x 4 samples (the tiny-face blocks): the same image either way,
+// lit and unlit, float and 8-bit, at any thread count.
+TEST(DrawMesh3d, PainterFlatColourOnlyEqualsTheSurfaceShader)
+{
+    std::vector<Vec3d> sphereV, sphereC;
+    std::vector<Vec3i> sphereF;
+    const int rings = 60, segments = 120;
+    for (int i = 0; i <= rings; i++)
+        for (int j = 0; j < segments; j++) {
+            const double th = CV_PI * i / rings, ph = 2 * CV_PI * j / segments;
+            sphereV.push_back(Vec3d(std::sin(th) * std::cos(ph), std::cos(th),
+                                    2.6 + std::sin(th) * std::sin(ph)));
+            sphereC.push_back(Vec3d(0.5 + 0.5 * std::cos(3 * ph), double(i) / rings, 0.3));
+        }
+    for (int i = 0; i < rings; i++)
+        for (int j = 0; j < segments; j++) {
+            const int a = i * segments + j, b = i * segments + (j + 1) % segments;
+            sphereF.push_back(Vec3i(a, b, a + segments));
+            sphereF.push_back(Vec3i(b, b + segments, a + segments));
+        }
+    std::vector<Vec3d> fieldV, fieldC;
+    std::vector<Vec3i> fieldF;
+    const int n = 100;
+    for (int i = 0; i <= n; i++)
+        for (int j = 0; j <= n; j++) {
+            const double x = 2.0 * j / n - 1, y = 2.0 * i / n - 1;
+            const double z = 2.2 + 0.2 * std::sin(5 * x) * std::cos(4 * y);
+            fieldV.push_back(Vec3d(1.2 * x, 1.2 * y, z));
+            fieldC.push_back(Vec3d(double(j) / n, double(i) / n, 0.7));
+        }
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            const int a = i * (n + 1) + j;
+            fieldF.push_back(Vec3i(a, a + 1, a + n + 2));
+            fieldF.push_back(Vec3i(a, a + n + 2, a + n + 1));
+        }
+    const Cam cam(220, 128, 128);
+    const int threads = getNumThreads();
+    for (int mesh = 0; mesh < 2; mesh++)
+        for (int type : {CV_32FC3, CV_8UC3})
+            for (bool lit : {false, true})
+                for (int t : {1, 2}) {
+                    setNumThreads(t);
+                    const std::vector<Vec3d>& v = mesh ? fieldV : sphereV;
+                    std::vector<Vec3d> c = mesh ? fieldC : sphereC;
+                    if (type == CV_8UC3)
+                        for (Vec3d& colour : c)
+                            colour *= 255;
+                    RenderSettings s;
+                    s.shadeType = SHADE_FLAT;
+                    s.visibility = VISIBILITY_PAINTER;
+                    if (lit)
+                        s.lights = {PointLight(Point3d(2, -3, 0), Vec3d(1, 0.9, 0.8))};
+                    const std::string what =
+                        format("mesh %d, type %d, lit %d, %d threads", mesh, type, int(lit), t);
+                    Mat colourOnly = shading_test::sentinelCanvas(Size(256, 256), type);
+                    Mat withIds = colourOnly.clone(), ids;
+                    drawMesh3d(colourOnly, v, mesh ? fieldF : sphereF, c, cam.K, cam.rvec,
+                               cam.tvec, s);
+                    drawMesh3d(withIds, v, mesh ? fieldF : sphereF, c, cam.K, cam.rvec, cam.tvec,
+                               s, noArray(), noArray(), ids);
+                    EXPECT_EQ(shading_test::maxAbsDiff(colourOnly, withIds), 0) << what;
+                    // Teeth: many samples and faces drawn (the sphere shows about a third of its faces).
+                    const int drawn = countNonZero(ids >= 0);
+                    EXPECT_GT(drawn, mesh ? 35000 : 10000) << what;
+                    std::vector<int> idList(ids.begin<int>(), ids.end<int>());
+                    std::sort(idList.begin(), idList.end());
+                    const long distinct =
+                        std::unique(idList.begin(), idList.end()) - idList.begin();
+                    EXPECT_GT(distinct, mesh ? 15000 : 2500) << what;
+                }
     setNumThreads(threads);
 }
 

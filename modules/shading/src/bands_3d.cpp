@@ -23,6 +23,33 @@ template <typename T, Surface kSurface>
 void shadeKeptSamples(const ScreenMesh& screen, const DepthTargets& targets, T* row, int y,
                       const int* kept, const float* weights, const uint64_t* written, int width);
 
+/** Lit flat faces (ScreenMesh::flatLit): the colours of `count` set-up faces (at most
+kLightBatch), lit together. Without lights, nothing: the shaders read ScreenMesh::faceValues. */
+inline void lightFlatFaces(const ScreenMesh& screen, const DepthTargets& targets,
+                           const int* faces, int count, float (*colors)[3])
+{
+    const ScreenMesh::FlatLit& lit = screen.flatLit;
+    if (!lit.faces || count == 0)
+        return;
+    alignas(32) float in[9][kLightBatch];
+    alignas(32) float out[6][kLightBatch];
+    for (int j = 0; j < count; j++)
+        stageFace(lit.verts, &lit.colors, lit.faces[screen.sourceOf(faces[j])], in, j);
+    targets.lighting->lightRows(false, in, out, count);
+    for (int j = 0; j < count; j++)
+        for (int k = 0; k < 3; k++)
+            colors[j][k] = out[k][j];
+}
+
+/** A flat face's colour in canvas units: lit (`litColor`, from lightFlatFaces) or as given. */
+template <typename T>
+inline void flatFaceColor(const ScreenMesh& screen, int face, const float* litColor, T color[3])
+{
+    const float* values = screen.faceValues.data() + size_t(face) * screen.faceStride;
+    for (int k = 0; k < 3; k++)
+        color[k] = toChannel<T>(screen.flatLit.faces ? litColor[k] : values[k]);
+}
+
 /** The span shaders of the 3D path, built per face from the ScreenMesh. */
 template <typename T, Surface kSurface>
 struct SurfaceShaders {
@@ -39,17 +66,7 @@ struct SurfaceShaders {
     kLightBatch), lit together. Without lights, nothing: make() reads ScreenMesh::faceValues. */
     void lightFaces(const int* faces, int count, float (*colors)[3]) const
     {
-        const ScreenMesh::FlatLit& lit = screen->flatLit;
-        if (!lit.faces || count == 0)
-            return;
-        alignas(32) float in[9][kLightBatch];
-        alignas(32) float out[6][kLightBatch];
-        for (int j = 0; j < count; j++)
-            stageFace(lit.verts, &lit.colors, lit.faces[screen->sourceOf(faces[j])], in, j);
-        targets->lighting->lightRows(false, in, out, count);
-        for (int j = 0; j < count; j++)
-            for (int k = 0; k < 3; k++)
-                colors[j][k] = out[k][j];
+        lightFlatFaces(*screen, *targets, faces, count, colors);
     }
 
     void prefetchVertex(int vertex) const
@@ -122,13 +139,43 @@ struct SurfaceShaders {
             if (order[i] == 2)
                 s.slotOf2 = i;
         }
-        const float* values = screen->faceValues.data() + size_t(face) * screen->faceStride;
         if constexpr (kSurface == Surface::kFlat)
-            for (int k = 0; k < 3; k++)
-                s.color[k] = toChannel<T>(screen->flatLit.faces ? litColor[k] : values[k]);
+            flatFaceColor(*screen, face, litColor, s.color);
         if constexpr (kSurface == Surface::kTexturedFaceLit)
             for (int k = 0; k < 6; k++)
-                s.faceLight[k] = values[k];
+                s.faceLight[k] = screen->faceValues[size_t(face) * screen->faceStride + k];
+    }
+};
+
+/** Flat faces in painter's order with no depth or face-id output: only the colour is drawn, so
+the faces take render()'s flat shader (FlatShader, set to each face's colour). It has a pen and
+reads no weights, so the engine's sample blocks serve these faces as they serve render()'s
+(SurfaceShaders<T, kFlat> computes each sample's depth, for the outputs it may write). The same
+pixels. */
+template <typename T>
+struct FaceColorShaders {
+    using Shader = FlatShader<T>;
+    using SmallShader = FlatShader<T>;
+    static constexpr bool kZBuffer = false;     //!< painter's order only
+    static constexpr bool kLightsFaces = true;  //!< as SurfaceShaders<T, kFlat>
+    const ScreenMesh* screen;
+    const DepthTargets* targets;
+
+    void lightFaces(const int* faces, int count, float (*colors)[3]) const
+    {
+        lightFlatFaces(*screen, *targets, faces, count, colors);
+    }
+
+    void prefetchVertex(int /*vertex*/) const {}  // nothing read per vertex
+    void beginBand(int /*y0*/, int /*y1*/) const {}  // no outputs to fill
+    bool smallShadersFit() const { return true; }
+
+    Shader make(const TriangleSetup&, const int*, const Vec3i&, int face,
+                const float* litColor = nullptr) const
+    {
+        T color[3];
+        flatFaceColor(*screen, face, litColor, color);
+        return Shader(color);
     }
 };
 
@@ -252,6 +299,11 @@ void drawScreenMeshAs(Mat& canvas, const ScreenMesh& screen, const DepthTargets&
     const Vec<T, 3>* fill = backgroundAs(background, bg);
     switch (screen.surface) {
     case Surface::kFlat:
+        if (!zbuffer && !targets.depth && !targets.ids) {
+            drawMeshInBands(canvas, screen.mesh, FaceColorShaders<T>{&screen, &targets}, fill,
+                            BandOptions());
+            return;
+        }
         return drawSurface<T, Surface::kFlat>(canvas, screen, targets, zbuffer, fill);
     case Surface::kGouraud:
         return drawSurface<T, Surface::kGouraud>(canvas, screen, targets, zbuffer, fill);

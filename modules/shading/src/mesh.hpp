@@ -1942,8 +1942,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                             new (shader) SmallShader(shaders.makeSmall(w, canonical, f, faces[i]));
                     } else {
                         const TriangleSetup unread{};  // flat reads no setup
-                        new (shader) SmallShader(shaders.make(unread, nullptr, out.corners[i],
-                                                              faces[i]));
+                        if constexpr (Shaders::kLightsFaces)
+                            new (shader) SmallShader(shaders.make(unread, nullptr, out.corners[i],
+                                                                  faces[i], out.lit(i)));
+                        else
+                            new (shader) SmallShader(shaders.make(unread, nullptr, out.corners[i],
+                                                                  faces[i]));
                     }
                 }
                 return true;

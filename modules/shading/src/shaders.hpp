@@ -280,6 +280,12 @@ struct FlatShader {
     static constexpr bool kReadsWeights = false;
     T color[4];  //!< the colour; for float rows a copy of its first channel in the fourth lane
 
+    //! A face's own colour, its channels already as toChannel gives them (drawMesh3d's).
+    explicit FlatShader(const T faceColor[3])
+        : color{faceColor[0], faceColor[1], faceColor[2], faceColor[0]}
+    {
+    }
+
     //! Color: Vec3d, or Vec3f (the caller's colours, where they are).
     template <typename Color>
     FlatShader(const TriangleSetup&, const int*, const Color* const c[3], bool = false)
