@@ -6,13 +6,14 @@
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw is
 // painted: small faces in face order, unsorted, each sample keeping the nearest face so far (the
 // later on a tie; tiny flat faces' samples found 8 faces at a time in 4 x 4 blocks), bigger ones
-// sorted, back to front; a closed surface's band of many small faces also in face order, but its
-// nearer winding first (a flat face's samples found in one 8 x 8 block) and the other's faces only
-// where not yet hidden. One with more overdraw (or a closed surface's band of few faces) is sorted
-// and built front to back, where a coverage bit mask keeps the first (frontmost) write of each
-// pixel: exactly what the painter's algorithm leaves visible, with each pixel written once, and a
-// face whose sample box is already final is skipped before setup. Per face, only a depth, a sample
-// box and its bin entries are kept between passes: setup happens in the band that draws the face.
+// sorted, back to front; a closed surface's band of many small faces (flat on a float canvas: of
+// any count) also in face order, but its nearer winding first (a flat face's samples found in one
+// 8 x 8 block) and the other's faces only where not yet hidden. One with more overdraw (or a
+// closed surface's other band of few faces) is sorted and built front to back, where a coverage
+// bit mask keeps the first (frontmost) write of each pixel: exactly what the painter's algorithm
+// leaves visible, with each pixel written once, and a face whose sample box is already final is
+// skipped before setup. Per face, only a depth, a sample box and its bin entries are kept between
+// passes: setup happens in the band that draws the face.
 #ifndef OPENCV_SHADING_MESH_HPP
 #define OPENCV_SHADING_MESH_HPP
 
