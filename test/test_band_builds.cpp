@@ -155,6 +155,17 @@ TEST_F(BandBuilds, Scenes3dAgreeBitForBit)
                         return std::vector<Mat>{canvas, depth, ids};
                     },
                     what);
+                if (shade == shading::SHADE_FLAT && vis == shading::VISIBILITY_PAINTER)
+                    expectBuildsAgree(  // no outputs: the faces take render()'s flat shader
+                        [&] {
+                            Mat canvas(sc.size, type, Scalar::all(0.5 * unit)), colors;
+                            sc.mesh.vcolors.convertTo(colors, CV_32F, unit);
+                            shading::drawMesh3d(canvas, sc.mesh.verts3d, sc.mesh.faces, colors,
+                                                sc.cameraMatrix, sc.rvec, sc.tvec, s,
+                                                sc.mesh.normals);
+                            return std::vector<Mat>{canvas};
+                        },
+                        what + ", colour only");
                 s.textureBorder = BORDER_WRAP;  // the coordinates run past the texture
                 expectBuildsAgree(
                     [&] {
