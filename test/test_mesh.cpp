@@ -249,6 +249,61 @@ TEST(ShadingMesh, EqualsSequentialPaintersForAnyThreadCount)
     setNumThreads(savedThreads);
 }
 
+// Flat faces on an 8-bit canvas take the same sample paths as on a float one (the 4 x 4 blocks
+// of a grid's tiny faces, a closed surface's 8 x 8 blocks), with a pen of three byte stores: the
+// 8-bit image must be the float image of the same integer colours, rounded. (A mean of three
+// integers never ends in .5, so rounding cannot differ between the two.) A jittered grid of
+// 2.7-pixel cells with tied depths, and a sphere seen from the side with both of its windings.
+TEST(ShadingMesh, EightBitFlatEqualsFloatRounded)
+{
+    const Size size(256, 256);
+    RNG rng(77);
+    for (int mesh = 0; mesh < 2; mesh++) {
+        std::vector<Point2d> verts;
+        std::vector<Vec3i> faces;
+        std::vector<double> depth;
+        if (mesh == 0) {
+            makeGridMesh(size, 96, false, 78, verts, faces);
+            for (size_t i = 0; i < verts.size(); i++)
+                depth.push_back(std::floor(rng.uniform(0.0, 6.0)));
+        } else {
+            const int rings = 70, segments = 140;
+            for (int i = 0; i <= rings; i++)
+                for (int j = 0; j < segments; j++) {
+                    const double th = CV_PI * i / rings, ph = 2 * CV_PI * j / segments;
+                    verts.push_back(Point2d(128 + 120 * std::sin(th) * std::cos(ph),
+                                            128 + 120 * std::cos(th)));
+                    depth.push_back(std::sin(th) * std::sin(ph));
+                }
+            for (int i = 0; i < rings; i++)
+                for (int j = 0; j < segments; j++) {
+                    const int a = i * segments + j, b = i * segments + (j + 1) % segments;
+                    faces.push_back({a, b, a + segments});
+                    faces.push_back({b, b + segments, a + segments});
+                }
+        }
+        std::vector<Vec3d> colors(verts.size());
+        for (Vec3d& c : colors)
+            c = Vec3d(rng.uniform(0, 256), rng.uniform(0, 256), rng.uniform(0, 256));
+        Mat asFloat(size, CV_32FC3, Scalar::all(3)), expected;
+        shading::drawMesh(asFloat, verts, faces, colors, depth, shading::SHADE_FLAT);
+        asFloat.convertTo(expected, CV_8U);
+        const int savedThreads = getNumThreads();
+        for (int threads : {1, 2}) {
+            setNumThreads(threads);
+            Mat canvas(size, CV_8UC3, Scalar::all(3));
+            shading::drawMesh(canvas, verts, faces, colors, depth, shading::SHADE_FLAT);
+            EXPECT_EQ(maxAbsDiff(canvas, expected), 0.0) << "mesh " << mesh << ", " << threads;
+        }
+        setNumThreads(savedThreads);
+        // Teeth: most of the canvas drawn (the grid covers all of it, the sphere's disc 69%).
+        int drawn = 0;
+        for (auto it = expected.begin<Vec3b>(); it != expected.end<Vec3b>(); ++it)
+            drawn += *it != Vec3b(3, 3, 3);
+        EXPECT_GT(drawn, mesh == 0 ? 60000 : 40000) << "mesh " << mesh;
+    }
+}
+
 // Gouraud sums w0 c0 + w1 c1 + w2 c2 in the vertices' canonical order (top, mid, bottom), so that
 // a face's pixels never depend on the path that draws it. Tiny faces of a mesh are set up eight
 // at a time (AVX2 build); here each is compared with the same face drawn alone, bit for bit, in

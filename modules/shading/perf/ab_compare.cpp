@@ -10,7 +10,7 @@
 // pixel). A build against a copy of itself gives 0.99-1.02 here.
 //
 //   usage: opencv_shading_ab OLD_LIB NEW_LIB SCENE [SHADE [VISIBILITY]]
-//                            [--threads N] [--frames N] [--rounds N] [--block N]
+//                            [--threads N] [--frames N] [--rounds N] [--block N] [--8u]
 //
 //   SCENE       a benchmark scene and its side: grid512, sphere512, random512, demo512,
 //               biggrid2048, bigsphere2048 (render) or knot3d512, torus3d2048 (drawMesh3d)
@@ -20,7 +20,8 @@
 //               --rounds (default 3); --block: frames in a row per build (default 1), the
 //               first of each not timed. Blocks of frames find what the build's own last frame
 //               left in each core's cache, as a benchmark (or a video) drawing the same scene
-//               again does; alternate frames each find the other build's.
+//               again does; alternate frames each find the other build's. --8u: 3D scenes on
+//               a CV_8UC3 canvas (colours scaled to 255) instead of CV_32FC3.
 //
 // e.g., with the libraries of main's build and of a change's copied aside first:
 //   opencv_shading_ab /tmp/main.so /tmp/change.so torus3d2048 gouraud zbuffer --frames 15
@@ -109,7 +110,7 @@ int main(int argc, char** argv)
 {
     std::vector<std::string> positional;
     int threads = 2, frames = 20, rounds = 3, block = 1;
-    bool help = false;
+    bool help = false, eightBit = false;
     for (int i = 1; i < argc; i++) {
         const std::string arg = argv[i];
         auto count = [&](const char* flag) {
@@ -128,6 +129,8 @@ int main(int argc, char** argv)
             rounds = count("--rounds");
         else if (arg == "--block")
             block = count("--block");
+        else if (arg == "--8u")
+            eightBit = true;
         else if (arg == "-h" || arg == "--help")
             help = true;
         else
@@ -136,7 +139,7 @@ int main(int argc, char** argv)
     if (help || positional.size() < 3 || positional.size() > 5) {
         std::fprintf(stderr,
                      "usage: opencv_shading_ab OLD_LIB NEW_LIB SCENE [SHADE [VISIBILITY]] "
-                     "[--threads N] [--frames N] [--rounds N] [--block N]\n"
+                     "[--threads N] [--frames N] [--rounds N] [--block N] [--8u]\n"
                      "  SCENE: grid512, demo512, biggrid2048, ... or knot3d512, torus3d2048\n");
         return help ? 0 : 2;
     }
@@ -156,6 +159,8 @@ int main(int argc, char** argv)
         fail("VISIBILITY: expected zbuffer or painter, got '" + visibilityName + "'");
     if (!is3d && (shade == cv::shading::SHADE_PHONG || positional.size() > 4))
         fail("phong and VISIBILITY are for the 3D scenes (knot3d, torus3d)");
+    if (!is3d && eightBit)
+        fail("--8u is for the 3D scenes (knot3d, torus3d): render() draws CV_32FC3");
     cv::setNumThreads(threads);
 
     // One frame of build k into images[k].
@@ -166,24 +171,27 @@ int main(int argc, char** argv)
     try {
         if (is3d) {
             scene3d = shading_perf::makeScene3d(kind, side);
+            const double unit = eightBit ? 255.0 : 1.0;
+            cv::Mat colors;
+            scene3d.mesh.vcolors.convertTo(colors, -1, unit);
             const bool zbuffer = visibilityName == "zbuffer";
             DrawMesh3dFn draw[2];
             for (int k = 0; k < 2; k++)
                 draw[k] = entryPoint<DrawMesh3dFn>(builds[k], kDrawMesh3dSymbol, "drawMesh3d");
-            frame = [&, zbuffer, draw0 = draw[0], draw1 = draw[1]](int k) {
+            frame = [&, zbuffer, unit, colors, draw0 = draw[0], draw1 = draw[1]](int k) {
                 cv::shading::RenderSettings settings = scene3d.settings;
                 settings.shadeType = shade;
                 settings.visibility =
                     zbuffer ? cv::shading::VISIBILITY_ZBUFFER : cv::shading::VISIBILITY_PAINTER;
                 settings.clear = true;  // canvas to white, depth to +inf, as the benchmark does
-                settings.background = cv::Scalar::all(1);
-                images[k].create(scene3d.size, CV_32FC3);
+                settings.background = cv::Scalar::all(unit);
+                images[k].create(scene3d.size, eightBit ? CV_8UC3 : CV_32FC3);
                 if (zbuffer)
                     depths[k].create(scene3d.size, CV_32F);
                 const shading_perf::Mesh3d& m = scene3d.mesh;
                 const cv::_InputOutputArray depth = zbuffer ? cv::_InputOutputArray(depths[k])
                                                             : cv::_InputOutputArray(cv::noArray());
-                (k == 0 ? draw0 : draw1)(images[k], m.verts3d, m.faces, m.vcolors,
+                (k == 0 ? draw0 : draw1)(images[k], m.verts3d, m.faces, colors,
                                          scene3d.cameraMatrix, scene3d.rvec, scene3d.tvec,
                                          settings, m.normals, depth, cv::noArray());
             };

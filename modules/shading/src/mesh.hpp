@@ -6,8 +6,8 @@
 // runs sequentially, so the image never depends on the thread count. A band with little overdraw is
 // painted: small faces in face order, unsorted, each sample keeping the nearest face so far (the
 // later on a tie; tiny flat faces' samples found 8 faces at a time in 4 x 4 blocks), bigger ones
-// sorted, back to front; a closed surface's band of many small faces (flat on a float canvas: of
-// any count) also in face order, but its nearer winding first (a flat face's samples found in one
+// sorted, back to front; a closed surface's band of many small faces (flat ones: of any count)
+// also in face order, but its nearer winding first (a flat face's samples found in one
 // 8 x 8 block) and the other's faces only where not yet hidden. One with more overdraw (or a
 // closed surface's other band of few faces) is sorted and built front to back, where a coverage
 // bit mask keeps the first (frontmost) write of each pixel: exactly what the painter's algorithm
@@ -1234,10 +1234,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     [[maybe_unused]] const bool boxEight = allNarrow.load();
 #if OPENCV_SHADING_BOX_EIGHT
     // Whether a closed surface's small faces in face order are drawn as sample blocks
-    // (paintSampleBlock): float canvases, flat shaders (a pen for the face), 8-lane builds.
+    // (paintSampleBlock): flat shaders (a pen for the face, float or 8-bit), 8-lane builds.
     constexpr bool kSampleBlocksBuilt =
-        std::is_same<T, float>::value && HasPen<typename Shaders::SmallShader>::value &&
-        !Shaders::SmallShader::kReadsWeights && kSmallLanes == 8;
+        penDraws<typename Shaders::SmallShader, T>() && !Shaders::SmallShader::kReadsWeights &&
+        kSmallLanes == 8;
     const bool sampleBlocksDrawn = kSampleBlocksBuilt && boxEight;
 #else
     const bool sampleBlocksDrawn = false;
@@ -1988,8 +1988,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                  faceRow, spanFn);
             };
             /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat or
-            Gouraud, float canvas), all small and within 4 x 4 samples in the band (a
-            million-face grid's): their samples from one block test of 8 faces at once
+            Gouraud on a float canvas, flat on an 8-bit one), all small and within 4 x 4 samples
+            in the band (a million-face grid's): their samples from one block test of 8 faces at once
             (tinyBlockSamplesEight), then each sample tested and stored as paintSpan's tiny spans
             do, with no walk of rows and no spans: about 60 instructions a face fewer on
             biggrid2048. A Gouraud face's pen starts at each row's first sample, the span's
@@ -2000,8 +2000,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             walk in paintSmallFaces took 5-6% longer (the same instructions; the code's
             layout). */
             auto paintTinyBlocks = [&](const int* faces, int count) __attribute__((noinline)) {
-                constexpr bool kTinyBlocks =
-                    std::is_same<T, float>::value && HasPen<SmallShader>::value;
+                constexpr bool kTinyBlocks = penDraws<SmallShader, T>();
                 if constexpr (!kTinyBlocks) {
                     (void)faces, (void)count;
                     return false;
@@ -2334,7 +2333,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         return;
                     }
                     using FaceShader = std::decay_t<decltype(shader)>;
-                    if constexpr (std::is_same<T, float>::value && HasPen<FaceShader>::value) {
+                    if constexpr (penDraws<FaceShader, T>()) {
                         // A tiny face's span (1.75 samples on the million-face grid): each
                         // sample tested and stored alone, without finding runs first.
                         if (xEnd - xBegin <= 4 && shader.penFits()) {

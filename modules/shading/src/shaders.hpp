@@ -343,21 +343,33 @@ struct FlatShader {
     }
 
 #if OPENCV_SHADING_SIMD128
-    /** A span's pixels one at a time (float rows only): put(pixel, x) stores at `pixel` what
-    shadeRun stores at column x. For the spans of a pixel or few whose samples are each
-    depth-tested: no run to find. */
-    struct Pen {
+    /** A span's pixels one at a time: put(pixel, x) stores at `pixel` what shadeRun stores at
+    column x. For the spans of a pixel or few whose samples are each depth-tested, and the
+    sample blocks: no run to find. Float rows: one 8 + 4-byte store. */
+    struct FloatPen {
         v_float32x4 value;
         __attribute__((always_inline)) void put(float* pixel, int) const
         {
             storePixel(pixel, value);
         }
     };
+    //! 8-bit rows: three byte stores.
+    struct BytePen {
+        uchar value[3];
+        __attribute__((always_inline)) void put(uchar* pixel, int) const
+        {
+            pixel[0] = value[0], pixel[1] = value[1], pixel[2] = value[2];
+        }
+    };
+    using Pen = std::conditional_t<std::is_same<T, float>::value, FloatPen, BytePen>;
     //! Whether pen() serves this face: always.
     bool penFits() const { return true; }
     __attribute__((always_inline)) Pen pen(const TriangleSetup&, int, int) const
     {
-        return Pen{v_load(color)};
+        if constexpr (std::is_same<T, float>::value)
+            return Pen{v_load(color)};
+        else
+            return Pen{{color[0], color[1], color[2]}};
     }
 #endif
 };
@@ -725,6 +737,17 @@ template <class Shader, class = void>
 struct HasPen : std::false_type {};
 template <class Shader>
 struct HasPen<Shader, std::void_t<typename Shader::Pen>> : std::true_type {};
+
+//! Whether Shader's pen draws rows of T: float rows, and 8-bit rows of flat faces (BytePen).
+template <class Shader, typename T>
+constexpr bool penDraws()
+{
+    if constexpr (HasPen<Shader>::value)
+        return std::is_same<T, float>::value ||
+               (std::is_same<T, uchar>::value && !Shader::kReadsWeights);
+    else
+        return false;
+}
 
 OPENCV_SHADING_ISA_END
 }  // namespace detail
