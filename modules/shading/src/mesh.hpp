@@ -1989,9 +1989,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             };
             /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat or
             Gouraud on a float canvas, flat on an 8-bit one), all small and within 4 x 4 samples
-            in the band (a million-face grid's): their samples from one block test of 8 faces at once
-            (tinyBlockSamplesEight), then each sample tested and stored as paintSpan's tiny spans
-            do, with no walk of rows and no spans: about 60 instructions a face fewer on
+            in the band (a million-face grid's): their samples from one block test of 8 faces at
+            once (tinyBlockSamplesEight), then each sample tested and stored as paintSpan's tiny
+            spans do, with no walk of rows and no spans: about 60 instructions a face fewer on
             biggrid2048. A Gouraud face's pen starts at each row's first sample, the span's
             first sample in the walk, so the colours are the walk's. False, having drawn
             nothing, where a box is bigger, a face is not small (a zero area, or a big face that

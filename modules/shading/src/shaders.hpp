@@ -353,7 +353,8 @@ struct FlatShader {
             storePixel(pixel, value);
         }
     };
-    //! 8-bit rows: three byte stores.
+    //! 8-bit rows: three byte stores (here too, so the scalar build keeps the row walk that
+    //! these paths are checked against).
     struct BytePen {
         uchar value[3];
         __attribute__((always_inline)) void put(uchar* pixel, int) const
