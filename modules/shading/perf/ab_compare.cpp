@@ -20,8 +20,9 @@
 //               --rounds (default 3); --block: frames in a row per build (default 1), the
 //               first of each not timed. Blocks of frames find what the build's own last frame
 //               left in each core's cache, as a benchmark (or a video) drawing the same scene
-//               again does; alternate frames each find the other build's. --8u: 3D scenes on
-//               a CV_8UC3 canvas (colours scaled to 255) instead of CV_32FC3.
+//               again does; alternate frames each find the other build's. --8u: a CV_8UC3
+//               canvas (colours scaled to 255) instead of CV_32FC3: for the 2D scenes
+//               drawMesh into a white canvas (set each frame) instead of render.
 //
 // e.g., with the libraries of main's build and of a change's copied aside first:
 //   opencv_shading_ab /tmp/main.so /tmp/change.so torus3d2048 gouraud zbuffer --frames 15
@@ -45,6 +46,9 @@ namespace {
 using RenderFn = void (*)(const cv::_InputArray&, const cv::_InputArray&, const cv::_InputArray&,
                           const cv::_InputArray&, const cv::_OutputArray&, int, cv::Size,
                           const cv::Scalar&);
+using DrawMeshFn = void (*)(const cv::_InputOutputArray&, const cv::_InputArray&,
+                            const cv::_InputArray&, const cv::_InputArray&,
+                            const cv::_InputArray&, int);
 using DrawMesh3dFn = void (*)(const cv::_InputOutputArray&, const cv::_InputArray&,
                               const cv::_InputArray&, const cv::_InputArray&,
                               const cv::_InputArray&, const cv::_InputArray&,
@@ -52,10 +56,12 @@ using DrawMesh3dFn = void (*)(const cv::_InputOutputArray&, const cv::_InputArra
                               const cv::_InputArray&, const cv::_InputOutputArray&,
                               const cv::_OutputArray&);
 
-// The mangled names of cv::shading::render and cv::shading::drawMesh3d (GCC and Clang on Linux).
+// The mangled names of cv::shading::render, drawMesh and drawMesh3d (GCC and Clang on Linux).
 const char* const kRenderSymbol =
     "_ZN2cv7shading6renderERKNS_11_InputArrayES3_S3_S3_RKNS_12_OutputArrayEiNS_5Size_IiEERKNS_"
     "7Scalar_IdEE";
+const char* const kDrawMeshSymbol =
+    "_ZN2cv7shading8drawMeshERKNS_17_InputOutputArrayERKNS_11_InputArrayES6_S6_S6_i";
 const char* const kDrawMesh3dSymbol =
     "_ZN2cv7shading10drawMesh3dERKNS_17_InputOutputArrayERKNS_11_InputArrayES6_S6_S6_S6_S6_"
     "RKNS0_14RenderSettingsES6_S3_RKNS_12_OutputArrayE";
@@ -159,8 +165,6 @@ int main(int argc, char** argv)
         fail("VISIBILITY: expected zbuffer or painter, got '" + visibilityName + "'");
     if (!is3d && (shade == cv::shading::SHADE_PHONG || positional.size() > 4))
         fail("phong and VISIBILITY are for the 3D scenes (knot3d, torus3d)");
-    if (!is3d && eightBit)
-        fail("--8u is for the 3D scenes (knot3d, torus3d): render() draws CV_32FC3");
     cv::setNumThreads(threads);
 
     // One frame of build k into images[k].
@@ -197,14 +201,30 @@ int main(int argc, char** argv)
             };
         } else {
             scene2d = shading_perf::makeScene(kind, side);
-            RenderFn render[2];
-            for (int k = 0; k < 2; k++)
-                render[k] = entryPoint<RenderFn>(builds[k], kRenderSymbol, "render");
-            frame = [&, render0 = render[0], render1 = render[1]](int k) {
-                const shading_perf::MeshScene& m = scene2d.mesh;
-                (k == 0 ? render0 : render1)(m.verts2d, m.faces, m.vcolors, m.depth, images[k],
-                                             shade, scene2d.size, cv::Scalar::all(1.0));
-            };
+            if (eightBit) {  // render() draws CV_32FC3: drawMesh into an 8-bit canvas
+                cv::Mat colors;
+                scene2d.mesh.vcolors.convertTo(colors, -1, 255.0);
+                DrawMeshFn draw[2];
+                for (int k = 0; k < 2; k++)
+                    draw[k] = entryPoint<DrawMeshFn>(builds[k], kDrawMeshSymbol, "drawMesh");
+                frame = [&, colors, draw0 = draw[0], draw1 = draw[1]](int k) {
+                    const shading_perf::MeshScene& m = scene2d.mesh;
+                    images[k].create(scene2d.size, CV_8UC3);
+                    images[k].setTo(cv::Scalar::all(255));
+                    (k == 0 ? draw0 : draw1)(images[k], m.verts2d, m.faces, colors, m.depth,
+                                             shade);
+                };
+            } else {
+                RenderFn render[2];
+                for (int k = 0; k < 2; k++)
+                    render[k] = entryPoint<RenderFn>(builds[k], kRenderSymbol, "render");
+                frame = [&, render0 = render[0], render1 = render[1]](int k) {
+                    const shading_perf::MeshScene& m = scene2d.mesh;
+                    (k == 0 ? render0 : render1)(m.verts2d, m.faces, m.vcolors, m.depth,
+                                                 images[k], shade, scene2d.size,
+                                                 cv::Scalar::all(1.0));
+                };
+            }
         }
     } catch (const std::exception& e) {
         fail(std::string("SCENE: ") + e.what());
