@@ -304,6 +304,79 @@ TEST(ShadingMesh, EightBitFlatEqualsFloatRounded)
     }
 }
 
+// Gouraud on an 8-bit canvas takes the float canvas's sample paths too (the 4 x 4 blocks of a
+// grid's tiny faces, the tiny spans' per-sample test), with a pen that rounds and saturates in
+// SIMD lanes: each 8-bit pixel must be the float image's value rounded as cv::saturate_cast
+// rounds it (Mat::convertTo), which the row shader's scalar toChannel does. Colours from -40 to
+// 300, so that the interpolated values need both saturations; the same two meshes as above, and
+// overlapping random faces.
+TEST(ShadingMesh, EightBitGouraudEqualsFloatRounded)
+{
+    const Size size(256, 256);
+    RNG rng(79);
+    for (int mesh = 0; mesh < 3; mesh++) {
+        std::vector<Point2d> verts;
+        std::vector<Vec3i> faces;
+        std::vector<double> depth;
+        if (mesh == 0) {
+            makeGridMesh(size, 96, false, 80, verts, faces);
+            for (size_t i = 0; i < verts.size(); i++)
+                depth.push_back(std::floor(rng.uniform(0.0, 6.0)));
+        } else if (mesh == 1) {
+            const int rings = 70, segments = 140;
+            for (int i = 0; i <= rings; i++)
+                for (int j = 0; j < segments; j++) {
+                    const double th = CV_PI * i / rings, ph = 2 * CV_PI * j / segments;
+                    verts.push_back(Point2d(128 + 120 * std::sin(th) * std::cos(ph),
+                                            128 + 120 * std::cos(th)));
+                    depth.push_back(std::sin(th) * std::sin(ph));
+                }
+            for (int i = 0; i < rings; i++)
+                for (int j = 0; j < segments; j++) {
+                    const int a = i * segments + j, b = i * segments + (j + 1) % segments;
+                    faces.push_back({a, b, a + segments});
+                    faces.push_back({b, b + segments, a + segments});
+                }
+        } else {
+            for (int f = 0; f < 6000; f++) {
+                const Point2d centre(rng.uniform(0.0, 256.0), rng.uniform(0.0, 256.0));
+                const double radius = std::exp(rng.uniform(std::log(0.8), std::log(12.0)));
+                for (int k = 0; k < 3; k++) {
+                    const double angle = rng.uniform(0.0, 2 * CV_PI);
+                    verts.push_back(centre + radius * Point2d(std::cos(angle), std::sin(angle)));
+                    depth.push_back(rng.uniform(0.0, 1.0));
+                }
+                faces.push_back({3 * f, 3 * f + 1, 3 * f + 2});
+            }
+        }
+        std::vector<Vec3d> colors(verts.size());
+        for (Vec3d& c : colors)
+            c = Vec3d(rng.uniform(-40.0, 300.0), rng.uniform(-40.0, 300.0),
+                      rng.uniform(-40.0, 300.0));
+        Mat asFloat(size, CV_32FC3, Scalar::all(3)), expected;
+        shading::drawMesh(asFloat, verts, faces, colors, depth, shading::SHADE_GOURAUD);
+        asFloat.convertTo(expected, CV_8U);
+        const int savedThreads = getNumThreads();
+        for (int threads : {1, 2}) {
+            setNumThreads(threads);
+            Mat canvas(size, CV_8UC3, Scalar::all(3));
+            shading::drawMesh(canvas, verts, faces, colors, depth, shading::SHADE_GOURAUD);
+            EXPECT_EQ(maxAbsDiff(canvas, expected), 0.0) << "mesh " << mesh << ", " << threads;
+        }
+        setNumThreads(savedThreads);
+        // Teeth: most of the canvas drawn, in many values, both saturations among them.
+        int drawn = 0, saturated[2] = {0, 0};
+        for (auto it = expected.begin<Vec3b>(); it != expected.end<Vec3b>(); ++it) {
+            drawn += *it != Vec3b(3, 3, 3);
+            for (int k = 0; k < 3; k++)
+                saturated[0] += (*it)[k] == 0, saturated[1] += (*it)[k] == 255;
+        }
+        EXPECT_GT(drawn, 40000) << "mesh " << mesh;
+        EXPECT_GT(saturated[0], 100) << "mesh " << mesh;
+        EXPECT_GT(saturated[1], 100) << "mesh " << mesh;
+    }
+}
+
 // Gouraud sums w0 c0 + w1 c1 + w2 c2 in the vertices' canonical order (top, mid, bottom), so that
 // a face's pixels never depend on the path that draws it. Tiny faces of a mesh are set up eight
 // at a time (AVX2 build); here each is compared with the same face drawn alone, bit for bit, in

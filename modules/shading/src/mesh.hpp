@@ -1988,7 +1988,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                  faceRow, spanFn);
             };
             /* paintSmallFaces for a batch of depth-tested faces of a pen shader (flat or
-            Gouraud on a float canvas, flat on an 8-bit one), all small and within 4 x 4 samples
+            Gouraud, on a float or 8-bit canvas), all small and within 4 x 4 samples
             in the band (a million-face grid's): their samples from one block test of 8 faces at
             once (tinyBlockSamplesEight), then each sample tested and stored as paintSpan's tiny
             spans do, with no walk of rows and no spans: about 60 instructions a face fewer on

@@ -713,10 +713,10 @@ struct GouraudShader {
 #endif
 
 #if OPENCV_SHADING_SIMD128 && CV_SIMD128_64F
-    /** FlatShader::Pen's counterpart (float rows only): the values storeGouraudRun gives the
-    span that starts at spanBegin, channel k of pixel x base[k] + stepX[k] * float(x - spanBegin),
-    the same sums and the same products. */
-    struct Pen {
+    /** FlatShader::Pen's counterpart: the values storeGouraudRun gives the span that starts at
+    spanBegin, channel k of pixel x base[k] + stepX[k] * float(x - spanBegin), the same sums and
+    the same products. Float rows: one 8 + 4-byte store. */
+    struct FloatPen {
         v_float32x4 base, step;
         int spanBegin;
         __attribute__((always_inline)) void put(float* pixel, int x) const
@@ -724,6 +724,20 @@ struct GouraudShader {
             storePixel(pixel, base + step * v_setall_f32(float(x - spanBegin)));
         }
     };
+    /** 8-bit rows: those values as toChannel gives them, rounded to nearest even (cvRound's
+    conversion, in 4 lanes) and saturated by the packs, then three byte stores. */
+    struct BytePen {
+        v_float32x4 base, step;
+        int spanBegin;
+        __attribute__((always_inline)) void put(uchar* pixel, int x) const
+        {
+            const v_int32x4 rounded = v_round(base + step * v_setall_f32(float(x - spanBegin)));
+            const v_int16x8 shorts = v_pack(rounded, rounded);
+            const unsigned bytes = v_reinterpret_as_u32(v_pack_u(shorts, shorts)).get0();
+            pixel[0] = uchar(bytes), pixel[1] = uchar(bytes >> 8), pixel[2] = uchar(bytes >> 16);
+        }
+    };
+    using Pen = std::conditional_t<std::is_same<T, float>::value, FloatPen, BytePen>;
     //! Whether pen() serves this face: not where its colours are computed per pixel.
     bool penFits() const { return !(kMayShadePerPixel && perPixel); }
     __attribute__((always_inline)) Pen pen(const TriangleSetup& t, int y, int spanBegin) const
@@ -739,15 +753,13 @@ struct HasPen : std::false_type {};
 template <class Shader>
 struct HasPen<Shader, std::void_t<typename Shader::Pen>> : std::true_type {};
 
-//! Whether Shader's pen draws rows of T: float rows, and 8-bit rows of flat faces (BytePen).
+//! Whether Shader's pen draws rows of T: float and 8-bit rows, flat (FlatShader) or Gouraud
+//! (GouraudShader), wherever the build has pens (128-bit SIMD with doubles).
 template <class Shader, typename T>
 constexpr bool penDraws()
 {
-    if constexpr (HasPen<Shader>::value)
-        return std::is_same<T, float>::value ||
-               (std::is_same<T, uchar>::value && !Shader::kReadsWeights);
-    else
-        return false;
+    return HasPen<Shader>::value &&
+           (std::is_same<T, float>::value || std::is_same<T, uchar>::value);
 }
 
 OPENCV_SHADING_ISA_END
