@@ -307,9 +307,10 @@ TEST(ShadingMesh, EightBitFlatEqualsFloatRounded)
 // Gouraud on an 8-bit canvas takes the float canvas's sample paths too (the 4 x 4 blocks of a
 // grid's tiny faces, the tiny spans' per-sample test), with a pen that rounds and saturates in
 // SIMD lanes: each 8-bit pixel must be the float image's value rounded as cv::saturate_cast
-// rounds it (Mat::convertTo), which the row shader's scalar toChannel does. Colours from -40 to
-// 300, so that the interpolated values need both saturations; the same two meshes as above, and
-// overlapping random faces.
+// rounds it (Mat::convertTo), which the row shader's scalar toChannel does; so must its runs of
+// four pixels at a time (storeBytePixelQuads). Colours from -40 to 300, so that the interpolated
+// values need both saturations; the same two meshes as above, and overlapping random faces of 1
+// to 120 pixels across.
 TEST(ShadingMesh, EightBitGouraudEqualsFloatRounded)
 {
     const Size size(256, 256);
@@ -340,7 +341,7 @@ TEST(ShadingMesh, EightBitGouraudEqualsFloatRounded)
         } else {
             for (int f = 0; f < 6000; f++) {
                 const Point2d centre(rng.uniform(0.0, 256.0), rng.uniform(0.0, 256.0));
-                const double radius = std::exp(rng.uniform(std::log(0.8), std::log(12.0)));
+                const double radius = std::exp(rng.uniform(std::log(0.8), std::log(60.0)));
                 for (int k = 0; k < 3; k++) {
                     const double angle = rng.uniform(0.0, 2 * CV_PI);
                     verts.push_back(centre + radius * Point2d(std::cos(angle), std::sin(angle)));
