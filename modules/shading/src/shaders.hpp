@@ -66,7 +66,8 @@ __attribute__((always_inline)) inline void eightPixelLanes(const v_float32x4& v,
 }
 #endif
 
-//! Claimed runs from this many pixels on are written in groups (storeFloatPixelGroups).
+//! Runs from this many pixels on are written in groups: float claimed runs
+//! (storeFloatPixelGroups) and every 8-bit Gouraud run (storeBytePixelGroups).
 constexpr int kFloatGroupMinPixels = 8;
 
 /** The values of a Gouraud run [xBegin, xEnd) of at least kGroupPixels, in groups of that many
