@@ -249,6 +249,31 @@ TEST(ShadingMesh, EqualsSequentialPaintersForAnyThreadCount)
     setNumThreads(savedThreads);
 }
 
+namespace {
+
+// A sphere of radius 120 around (128, 128) seen from the side, with both of its windings (its
+// depth the view axis): 70 rings of 140 segments.
+void makeSideSphere(std::vector<Point2d>& verts, std::vector<Vec3i>& faces,
+                    std::vector<double>& depth)
+{
+    const int rings = 70, segments = 140;
+    for (int i = 0; i <= rings; i++)
+        for (int j = 0; j < segments; j++) {
+            const double th = CV_PI * i / rings, ph = 2 * CV_PI * j / segments;
+            verts.push_back(Point2d(128 + 120 * std::sin(th) * std::cos(ph),
+                                    128 + 120 * std::cos(th)));
+            depth.push_back(std::sin(th) * std::sin(ph));
+        }
+    for (int i = 0; i < rings; i++)
+        for (int j = 0; j < segments; j++) {
+            const int a = i * segments + j, b = i * segments + (j + 1) % segments;
+            faces.push_back({a, b, a + segments});
+            faces.push_back({b, b + segments, a + segments});
+        }
+}
+
+}  // namespace
+
 // Flat faces on an 8-bit canvas take the same sample paths as on a float one (the 4 x 4 blocks
 // of a grid's tiny faces, a closed surface's 8 x 8 blocks), with a pen of three byte stores: the
 // 8-bit image must be the float image of the same integer colours, rounded. (A mean of three
@@ -267,20 +292,7 @@ TEST(ShadingMesh, EightBitFlatEqualsFloatRounded)
             for (size_t i = 0; i < verts.size(); i++)
                 depth.push_back(std::floor(rng.uniform(0.0, 6.0)));
         } else {
-            const int rings = 70, segments = 140;
-            for (int i = 0; i <= rings; i++)
-                for (int j = 0; j < segments; j++) {
-                    const double th = CV_PI * i / rings, ph = 2 * CV_PI * j / segments;
-                    verts.push_back(Point2d(128 + 120 * std::sin(th) * std::cos(ph),
-                                            128 + 120 * std::cos(th)));
-                    depth.push_back(std::sin(th) * std::sin(ph));
-                }
-            for (int i = 0; i < rings; i++)
-                for (int j = 0; j < segments; j++) {
-                    const int a = i * segments + j, b = i * segments + (j + 1) % segments;
-                    faces.push_back({a, b, a + segments});
-                    faces.push_back({b, b + segments, a + segments});
-                }
+            makeSideSphere(verts, faces, depth);
         }
         std::vector<Vec3d> colors(verts.size());
         for (Vec3d& c : colors)
@@ -324,20 +336,7 @@ TEST(ShadingMesh, EightBitGouraudEqualsFloatRounded)
             for (size_t i = 0; i < verts.size(); i++)
                 depth.push_back(std::floor(rng.uniform(0.0, 6.0)));
         } else if (mesh == 1) {
-            const int rings = 70, segments = 140;
-            for (int i = 0; i <= rings; i++)
-                for (int j = 0; j < segments; j++) {
-                    const double th = CV_PI * i / rings, ph = 2 * CV_PI * j / segments;
-                    verts.push_back(Point2d(128 + 120 * std::sin(th) * std::cos(ph),
-                                            128 + 120 * std::cos(th)));
-                    depth.push_back(std::sin(th) * std::sin(ph));
-                }
-            for (int i = 0; i < rings; i++)
-                for (int j = 0; j < segments; j++) {
-                    const int a = i * segments + j, b = i * segments + (j + 1) % segments;
-                    faces.push_back({a, b, a + segments});
-                    faces.push_back({b, b + segments, a + segments});
-                }
+            makeSideSphere(verts, faces, depth);
         } else {
             for (int f = 0; f < 6000; f++) {
                 const Point2d centre(rng.uniform(0.0, 256.0), rng.uniform(0.0, 256.0));
