@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <thread>
 
 using namespace cv;
@@ -272,6 +273,29 @@ void makeSideSphere(std::vector<Point2d>& verts, std::vector<Vec3i>& faces,
         }
 }
 
+// Draws the mesh on a float canvas and on an 8-bit one, both of background 3, at 1 and 2
+// threads, and expects every 8-bit pixel to be the float image's, converted (rounded and
+// saturated) by Mat::convertTo. Returns that expected 8-bit image.
+Mat expectEightBitEqualsFloatConverted(Size size, const std::vector<Point2d>& verts,
+                                       const std::vector<Vec3i>& faces,
+                                       const std::vector<Vec3d>& colors,
+                                       const std::vector<double>& depth, int shade,
+                                       const std::string& what)
+{
+    Mat asFloat(size, CV_32FC3, Scalar::all(3)), expected;
+    shading::drawMesh(asFloat, verts, faces, colors, depth, shade);
+    asFloat.convertTo(expected, CV_8U);
+    const int savedThreads = getNumThreads();
+    for (int threads : {1, 2}) {
+        setNumThreads(threads);
+        Mat canvas(size, CV_8UC3, Scalar::all(3));
+        shading::drawMesh(canvas, verts, faces, colors, depth, shade);
+        EXPECT_EQ(maxAbsDiff(canvas, expected), 0.0) << what << ", " << threads << " threads";
+    }
+    setNumThreads(savedThreads);
+    return expected;
+}
+
 }  // namespace
 
 // Flat faces on an 8-bit canvas take the same sample paths as on a float one (the 4 x 4 blocks
@@ -297,17 +321,8 @@ TEST(ShadingMesh, EightBitFlatEqualsFloatRounded)
         std::vector<Vec3d> colors(verts.size());
         for (Vec3d& c : colors)
             c = Vec3d(rng.uniform(0, 256), rng.uniform(0, 256), rng.uniform(0, 256));
-        Mat asFloat(size, CV_32FC3, Scalar::all(3)), expected;
-        shading::drawMesh(asFloat, verts, faces, colors, depth, shading::SHADE_FLAT);
-        asFloat.convertTo(expected, CV_8U);
-        const int savedThreads = getNumThreads();
-        for (int threads : {1, 2}) {
-            setNumThreads(threads);
-            Mat canvas(size, CV_8UC3, Scalar::all(3));
-            shading::drawMesh(canvas, verts, faces, colors, depth, shading::SHADE_FLAT);
-            EXPECT_EQ(maxAbsDiff(canvas, expected), 0.0) << "mesh " << mesh << ", " << threads;
-        }
-        setNumThreads(savedThreads);
+        const Mat expected = expectEightBitEqualsFloatConverted(
+            size, verts, faces, colors, depth, shading::SHADE_FLAT, "mesh " + std::to_string(mesh));
         // Teeth: most of the canvas drawn (the grid covers all of it, the sphere's disc 69%).
         int drawn = 0;
         for (auto it = expected.begin<Vec3b>(); it != expected.end<Vec3b>(); ++it)
@@ -319,8 +334,8 @@ TEST(ShadingMesh, EightBitFlatEqualsFloatRounded)
 // Gouraud on an 8-bit canvas takes the float canvas's sample paths too (the 4 x 4 blocks of a
 // grid's tiny faces, the tiny spans' per-sample test), with a pen that rounds and saturates in
 // SIMD lanes: each 8-bit pixel must be the float image's value rounded as cv::saturate_cast
-// rounds it (Mat::convertTo), which the row shader's scalar toChannel does; so must its runs of
-// four pixels at a time (storeBytePixelQuads). Colours from -40 to 300, so that the interpolated
+// rounds it (Mat::convertTo), which the row shader's scalar toChannel does; so must its runs
+// stored in groups of pixels (storeBytePixelGroups). Colours from -40 to 300, so that the interpolated
 // values need both saturations; the same two meshes as above, and overlapping random faces of 1
 // to 120 pixels across.
 TEST(ShadingMesh, EightBitGouraudEqualsFloatRounded)
@@ -353,17 +368,8 @@ TEST(ShadingMesh, EightBitGouraudEqualsFloatRounded)
         for (Vec3d& c : colors)
             c = Vec3d(rng.uniform(-40.0, 300.0), rng.uniform(-40.0, 300.0),
                       rng.uniform(-40.0, 300.0));
-        Mat asFloat(size, CV_32FC3, Scalar::all(3)), expected;
-        shading::drawMesh(asFloat, verts, faces, colors, depth, shading::SHADE_GOURAUD);
-        asFloat.convertTo(expected, CV_8U);
-        const int savedThreads = getNumThreads();
-        for (int threads : {1, 2}) {
-            setNumThreads(threads);
-            Mat canvas(size, CV_8UC3, Scalar::all(3));
-            shading::drawMesh(canvas, verts, faces, colors, depth, shading::SHADE_GOURAUD);
-            EXPECT_EQ(maxAbsDiff(canvas, expected), 0.0) << "mesh " << mesh << ", " << threads;
-        }
-        setNumThreads(savedThreads);
+        const Mat expected = expectEightBitEqualsFloatConverted(
+            size, verts, faces, colors, depth, shading::SHADE_GOURAUD, "mesh " + std::to_string(mesh));
         // Teeth: most of the canvas drawn, in many values, both saturations among them.
         int drawn = 0, saturated[2] = {0, 0};
         for (auto it = expected.begin<Vec3b>(); it != expected.end<Vec3b>(); ++it) {
