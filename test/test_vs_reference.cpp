@@ -1181,12 +1181,12 @@ namespace {
 // [0.5, 1.5) (some back faces show); Ties, the front at 1 and the back's vertices at 1 or 2
 // (faces of equal mean depth meet, whose order decides); Infinite, each vertex either finite or
 // infinite. Cells of 2 pixels give boxes of 2-4 columns, cells of 5 boxes of 5-8 columns and up
-// to 8 rows.
-Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths, int cell = 2)
+// to 8 rows, cells of 13 x 2 pixels slivers whose boxes are 12-15 columns wide.
+Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths, cv::Size cell = cv::Size(2, 2))
 {
     Mesh m;
     const double inf = std::numeric_limits<double>::infinity();
-    const int nx = size.width / cell + 2, ny = size.height / cell + 2;
+    const int nx = size.width / cell.width + 2, ny = size.height / cell.height + 2;
     std::vector<cv::Vec3i> layerFaces[2];
     for (int layer = 0; layer < 2; layer++) {
         const int first = (int)m.verts.size();
@@ -1195,7 +1195,8 @@ Mesh closedSurfaceMesh(cv::RNG& rng, cv::Size size, Depths depths, int cell = 2)
             for (int i = 0; i <= nx; i++) {
                 const Point2d jitter(std::round(rng.uniform(-0.4, 0.4) * 4) / 4,
                                      std::round(rng.uniform(-0.4, 0.4) * 4) / 4);
-                m.verts.push_back(Point2d(cell * (i - 1), cell * (j - 1)) + shift + jitter);
+                m.verts.push_back(Point2d(cell.width * (i - 1), cell.height * (j - 1)) + shift +
+                                  jitter);
                 m.colors.push_back(randomColour(rng, 0, 1));
                 double d = 0;
                 if (depths == Depths::Random)
@@ -1233,14 +1234,15 @@ TEST(ShadingVsReference, DrawMeshClosedSurfaceInFaceOrder)
     cv::RNG rng(scaledSeed(151));
     // One band of 64 rows (10,240 faces and more), and two, the second partly on the canvas;
     // every band whole, then in parts. Then bigger faces: one band of 5,000 faces whose boxes
-    // are 5-8 samples wide.
+    // are 5-8 samples wide, and one of 6,900 slivers whose boxes are 12-15 samples wide (the
+    // hidden-face test of boxes wider than 8, four samples a step with the last step masked).
     struct Surface {
-        cv::Size size;
-        int cell;
+        cv::Size size, cell;
     };
-    for (const Surface surface : { Surface{ cv::Size(160, 64), 2 },
-                                   Surface{ cv::Size(150, 100), 2 },
-                                   Surface{ cv::Size(400, 64), 5 } })
+    for (const Surface surface : { Surface{ cv::Size(160, 64), cv::Size(2, 2) },
+                                   Surface{ cv::Size(150, 100), cv::Size(2, 2) },
+                                   Surface{ cv::Size(400, 64), cv::Size(5, 5) },
+                                   Surface{ cv::Size(640, 64), cv::Size(13, 2) } })
         for (Depths depths : { Depths::Random, Depths::Ties, Depths::Infinite })
             for (bool inParts : { false, true })
                 for (bool gouraud : { false, true }) {
