@@ -700,6 +700,7 @@ struct MeshWorkspace {
     std::vector<double> depths;       //!< per face: its key from its vertices' depths
     std::vector<SampleBox> boxes;     //!< per face; no rows: culled
     std::vector<uint64_t> binned;     //!< per face and band it crosses
+    std::vector<uint32_t> binnedFaces;  //!< the same, where every band is in face order
     std::vector<uint8_t> clockwise;   //!< per boxed face: 1 where wound clockwise (y down)
 
     //! Calls after one that needed more than this reallocate instead of holding it.
@@ -710,7 +711,7 @@ struct MeshWorkspace {
         return snapped.capacity() * sizeof(FixedPoint) +
                narrowPoints.capacity() * sizeof(uint64_t) + depths.capacity() * sizeof(double) +
                boxes.capacity() * sizeof(SampleBox) + binned.capacity() * sizeof(uint64_t) +
-               clockwise.capacity();
+               binnedFaces.capacity() * sizeof(uint32_t) + clockwise.capacity();
     }
 
     static MeshWorkspace& ofThisThread()
@@ -1568,14 +1569,18 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     // Bands drawn in face order read no sort key: where no band sorts, the entries go without
     // one (each face's key quantized and stored costs the million-face grid's binning ~17
     // instructions a face).
-    bool anyBandSorts = false;
-    for (int k = 0; k < bandCount && byDepth && !anyBandSorts; k++)
-        anyBandSorts = bandStart[k + 1] > bandStart[k] && !bandWay(k).inFaceOrder;
+    // Where every band is drawn in face order, an entry is the face's index alone, in 32 bits:
+    // half the bytes binning writes and the bands read.
+    bool allInFaceOrder = true;
+    for (int k = 0; k < bandCount && allInFaceOrder; k++)
+        allInFaceOrder = bandStart[k + 1] == bandStart[k] || bandWay(k).inFaceOrder;
+    const bool anyBandSorts = byDepth && !allInFaceOrder;
     std::vector<uint64_t>& binned = work.binned;
-    binned.resize(bandStart[bandCount]);
-    auto binChunk = [&](int c, auto kKeyed) {
+    std::vector<uint32_t>& binnedFaces = work.binnedFaces;
+    binned.resize(allInFaceOrder ? 0 : bandStart[bandCount]);
+    binnedFaces.resize(allInFaceOrder ? bandStart[bandCount] : 0);
+    auto binChunk = [&](int c, auto entries, auto kKeyed) {
         uint64_t* const cursor = &binCursor[size_t(c) * bandCount];
-        uint64_t* const entries = binned.data();
         const SampleBox* const boxOf = boxes.data();
         const int shift = bandShift;
         const int begin = c * chunkFaces;
@@ -1587,7 +1592,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const SampleBox& box = boxOf[i];
             if (box.rowBegin >= box.rowEnd)
                 continue;  // culled: in no band
-            const uint64_t entry = bandEntry(kKeyed ? quantizedKey(i) : 0, i);
+            using Entry = std::remove_pointer_t<decltype(entries)>;
+            const Entry entry = Entry(bandEntry(kKeyed ? quantizedKey(i) : 0, i));
             const int first = box.rowBegin >> shift, last = (box.rowEnd - 1) >> shift;
             if (first == last) {
                 if (first != runBand) {
@@ -1607,10 +1613,12 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     };
     parallel_for_(Range(0, chunkCount), [&](const Range& chunks) {
         for (int c = chunks.start; c < chunks.end; c++) {
-            if (anyBandSorts)
-                binChunk(c, std::true_type());
+            if (allInFaceOrder)
+                binChunk(c, binnedFaces.data(), std::false_type());
+            else if (anyBandSorts)
+                binChunk(c, binned.data(), std::true_type());
             else
-                binChunk(c, std::false_type());
+                binChunk(c, binned.data(), std::false_type());
         }
     });
 
@@ -1722,7 +1730,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 if (y0 >= y1)  // the canvas's last band may end above the part
                     continue;
             }
-            uint64_t* order = binned.data() + bandStart[band];  // decreasing face order
+            // Decreasing face order: the entries, or where all bands are in face order the faces.
+            uint64_t* order = allInFaceOrder ? nullptr : binned.data() + bandStart[band];
+            const uint32_t* faceList =
+                allInFaceOrder ? binnedFaces.data() + bandStart[band] : nullptr;
             size_t orderSize = bandStart[band + 1] - bandStart[band];
             const BandWay way = bandWay(band);
             {
@@ -1742,11 +1753,13 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // other parts may be drawn at the same time and the lists are sorted in place.
                 partEntries.clear();
                 for (size_t i = 0; i < orderSize; i++) {
-                    const SampleBox& box = faceBox[entryFace(order[i])];
+                    const uint64_t entry = faceList ? uint64_t(faceList[i]) : order[i];
+                    const SampleBox& box = faceBox[entryFace(entry)];
                     if (box.rowBegin < y1 && box.rowEnd > y0)
-                        partEntries.push_back(order[i]);
+                        partEntries.push_back(entry);
                 }
                 order = partEntries.data();
+                faceList = nullptr;
                 orderSize = partEntries.size();
             }
             shaders.beginBand(y0, y1);
@@ -2394,7 +2407,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 auto always = [](int) { return true; };
                 auto never = [] { return false; };
                 auto inFaceOrderAt = [&](size_t j) {  // entries are in decreasing face order
-                    return entryFace(order[orderSize - 1 - j]);
+                    return faceList ? int(faceList[orderSize - 1 - j])
+                                    : entryFace(order[orderSize - 1 - j]);
                 };
                 // Where faces never overlap (a grid), the walk's span lengths repeat and it is
                 // the cheaper way (grid512 flat 1.02-1.05x through the sample blocks).
