@@ -1568,9 +1568,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
     };
     // Bands drawn in face order read no sort key: where no band sorts, the entries go without
     // one (each face's key quantized and stored costs the million-face grid's binning ~17
-    // instructions a face).
-    // Where every band is drawn in face order, an entry is the face's index alone, in 32 bits:
-    // half the bytes binning writes and the bands read.
+    // instructions a face), and where every band is drawn in face order an entry is the face's
+    // index alone, in 32 bits (binnedFaces): half the bytes binning writes and the bands read.
     bool allInFaceOrder = true;
     for (int k = 0; k < bandCount && allInFaceOrder; k++)
         allInFaceOrder = bandStart[k + 1] == bandStart[k] || bandWay(k).inFaceOrder;
