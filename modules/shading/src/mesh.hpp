@@ -2319,7 +2319,8 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         for (int y = y0; y < y1; y++)
                             fillPixels(canvas.ptr<T>(y), 0, columns, background->val);
                     if (byDepth) {
-                        // Seven past the last row: hiddenByNearer reads eight at a box's start.
+                        // Seven past the last row: hiddenByNearer reads eight at a box's start,
+                        // and a wider box's four a step up to three past its end.
                         bandDepths.resize(size_t(y1 - y0) * columns + 7);
                         std::fill(bandDepths.begin(), bandDepths.end(), kUntouchedDepth);
                     }
