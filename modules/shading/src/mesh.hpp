@@ -984,6 +984,33 @@ inline void gatherNarrowPoints(const long long* words, const v_int32x8& index, v
     x = v_int32x8(_mm256_castps_si256(_mm256_shuffle_ps(a, b, 0x88)));
     y = v_int32x8(_mm256_castps_si256(_mm256_shuffle_ps(a, b, 0xdd)));
 }
+
+/** triangleBox of 8 faces of narrow vertices in 32-bit lanes, the same boxes (xs[j], ys[j]:
+corner j's coordinates); `boxed`: all ones where triangleBox returns true. */
+struct BoxLanes {
+    v_int32x8 rowBegin, rowEnd, colFirst, colLast, boxed;
+};
+__attribute__((always_inline)) inline BoxLanes triangleBoxEight(const v_int32x8 xs[3],
+                                                                const v_int32x8 ys[3], Size size)
+{
+    const v_int32x8 roundUp = v256_setall_s32(int(kSubpixelOne - 1)), zero = v256_setzero_s32();
+    const v_int32x8 lastColumn = v256_setall_s32(size.width - 1);
+    auto toPixel = [&](const v_int32x8& fixed, int limit) {
+        return v_min(v_max((fixed + roundUp) >> kSubpixelBits, zero), v256_setall_s32(limit));
+    };
+    const v_int32x8 xMin = v_min(v_min(xs[0], xs[1]), xs[2]);
+    const v_int32x8 xMax = v_max(v_max(xs[0], xs[1]), xs[2]);
+    const v_int32x8 yMin = v_min(v_min(ys[0], ys[1]), ys[2]);
+    const v_int32x8 yMax = v_max(v_max(ys[0], ys[1]), ys[2]);
+    BoxLanes box;
+    box.rowBegin = toPixel(yMin, size.height);
+    box.rowEnd = toPixel(yMax, size.height);
+    box.colFirst = v_min(toPixel(xMin, size.width), lastColumn);
+    box.colLast = v_min(xMax >> kSubpixelBits, lastColumn);
+    box.boxed = (xMax >= zero) & (xMin <= v256_setall_s32(int(size.width * kSubpixelOne))) &
+                (box.rowBegin < box.rowEnd) & (box.colFirst <= box.colLast);
+    return box;
+}
 #endif
 
 /** Byte j of of[m]: bit j of m (eight flags from a lane mask, a byte each). */
@@ -1371,12 +1398,7 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             const long long* const pointPairs =
                 reinterpret_cast<const long long*>(work.narrowPoints.data());
             const v_int32x8 laneBit(1, 2, 4, 8, 16, 32, 64, 128);
-            const v_int32x8 roundUp = v256_setall_s32(int(kSubpixelOne - 1));
-            const v_int32x8 zero = v256_setzero_s32(), one = v256_setall_s32(1);
-            const v_int32x8 widthFixed = v256_setall_s32(int(canvasSize.width * kSubpixelOne));
-            const v_int32x8 width = v256_setall_s32(canvasSize.width);
-            const v_int32x8 height = v256_setall_s32(canvasSize.height);
-            const v_int32x8 lastColumn = v256_setall_s32(canvasSize.width - 1);
+            const v_int32x8 one = v256_setall_s32(1);
             const v_float64x4 third = v256_setall_f64(3.0), infinity = v256_setall_f64(inf),
                               minusInfinity = v256_setall_f64(-inf);
             const v_float64x4 toPixels =
@@ -1418,21 +1440,13 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                         highest = v_max(highest, v_select(finite, key, minusInfinity));
                     }
                 }
-                // triangleBox in 32-bit lanes.
-                const v_int32x8 xMin = v_min(v_min(x0, x1), x2), xMax = v_max(v_max(x0, x1), x2);
-                const v_int32x8 yMin = v_min(v_min(y0, y1), y2), yMax = v_max(v_max(y0, y1), y2);
-                auto toPixel = [&](const v_int32x8& fixed, const v_int32x8& limit) {
-                    return v_min(v_max((fixed + roundUp) >> kSubpixelBits, zero), limit);
-                };
-                const v_int32x8 rowBegin = toPixel(yMin, height), rowEnd = toPixel(yMax, height);
-                const v_int32x8 colFirst = v_min(toPixel(xMin, width), lastColumn);
-                const v_int32x8 colLast = v_min(xMax >> kSubpixelBits, lastColumn);
-                const v_int32x8 boxed = (xMax >= zero) & (xMin <= widthFixed) &
-                                        (rowBegin < rowEnd) & (colFirst <= colLast);
-                const int drawn = v_signmask(boxed) & keyed;
+                const v_int32x8 xs[3] = {x0, x1, x2}, ys[3] = {y0, y1, y2};
+                const BoxLanes box = triangleBoxEight(xs, ys, canvasSize);
+                const v_int32x8 rowBegin = box.rowBegin, rowEnd = box.rowEnd;
+                const int drawn = v_signmask(box.boxed) & keyed;
                 const v_int32x8 drawnMask = (v256_setall_s32(drawn) & laneBit) == laneBit;
                 v_store_interleave(reinterpret_cast<int*>(faceBox + i), rowBegin & drawnMask,
-                                   rowEnd & drawnMask, colFirst, colLast);
+                                   rowEnd & drawnMask, box.colFirst, box.colLast);
                 if (!drawn)
                     continue;
                 // The area as boxFace computes it, from the same exact differences.
@@ -1843,7 +1857,10 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             using SmallShader = typename Shaders::SmallShader;
             struct SmallFaces {
                 alignas(32) int32_t at0[3][kBatch], perColumn[3][kBatch], perRow[3][kBatch];
-                alignas(32) int32_t firstColumn[kBatch], firstRow[kBatch], endRow[kBatch];
+                //! The box in the band, from the vertices (triangleBoxEight): the bands read no
+                //! boxes where all their faces are small (16 MB a million-face frame).
+                alignas(32) int32_t firstColumn[kBatch], lastColumn[kBatch], firstRow[kBatch],
+                    endRow[kBatch];
                 Vec3i corners[kBatch];
                 //! Shaders::kLightsFaces: every face's colour, lit together (lightFaces).
                 float litColor[Shaders::kLightsFaces ? kBatch : 1][3];
@@ -1872,14 +1889,9 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 // captured rows, which it would then reload every face.
                 const int top = y0, bottom = y1;
                 const Vec3i* const cornersOf = faceAt;
-                const SampleBox* const boxOf = faceBox;
                 const FixedPoint* const points = snapped;
                 for (int i = 0; i < count; i++) {
                     out.corners[i] = cornersOf[faces[i]];
-                    const SampleBox& box = boxOf[faces[i]];
-                    out.firstColumn[i] = box.colFirst;
-                    out.firstRow[i] = std::max(box.rowBegin, top);
-                    out.endRow[i] = std::min(box.rowEnd, bottom);
                     for (int j = 0; j < 3; j++) {
                         const FixedPoint& p = points[out.corners[i][j]];
                         x[j][i] = int32_t(p.x), y[j][i] = int32_t(p.y);  // narrow
@@ -1888,7 +1900,6 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                 }
                 const int lanes = (count + 7) & ~7;
                 for (int i = count; i < lanes; i++) {  // a zero area: not set up
-                    out.firstColumn[i] = out.firstRow[i] = 0;
                     for (int j = 0; j < 3; j++)
                         x[j][i] = y[j][i] = 0;
                 }
@@ -1898,6 +1909,11 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
                                              v256_load(x[2] + g)};
                     const v_int32x8 ys[3] = {v256_load(y[0] + g), v256_load(y[1] + g),
                                              v256_load(y[2] + g)};
+                    const BoxLanes box = triangleBoxEight(xs, ys, size);
+                    v_store(out.firstColumn + g, box.colFirst);
+                    v_store(out.lastColumn + g, box.colLast);
+                    v_store(out.firstRow + g, v_max(box.rowBegin, v256_setall_s32(top)));
+                    v_store(out.endRow + g, v_min(box.rowEnd, v256_setall_s32(bottom)));
                     int32_t* const at[3] = {out.at0[0] + g, out.at0[1] + g, out.at0[2] + g};
                     int32_t* const column[3] = {out.perColumn[0] + g, out.perColumn[1] + g,
                                                 out.perColumn[2] + g};
@@ -2007,32 +2023,25 @@ void drawMeshInBands(Mat& canvas, const MeshData& mesh, const Shaders& shaders,
             biggrid2048. A Gouraud face's pen starts at each row's first sample, the span's
             first sample in the walk, so the colours are the walk's. False, having drawn
             nothing, where a box is bigger, a face is not small (a zero area, or a big face that
-            the canvas clips to a small box) or a shader has no pen. Called before
-            paintSmallFaces's own setup, which it repeats: with the setup shared, the spheres'
-            walk in paintSmallFaces took 5-6% longer (the same instructions; the code's
-            layout). */
+            the canvas clips to a small box) or a shader has no pen; paintSmallFaces then
+            sets the batch up again (with the setup shared, the spheres' walk in paintSmallFaces
+            took 5-6% longer: the same instructions, the code's layout). The boxes' sizes come
+            from that setup, not from the stored boxes. */
             auto paintTinyBlocks = [&](const int* faces, int count) __attribute__((noinline)) {
                 constexpr bool kTinyBlocks = penDraws<SmallShader, T>();
                 if constexpr (!kTinyBlocks) {
                     (void)faces, (void)count;
                     return false;
                 } else {
-                    alignas(32) int32_t columnCount[kBatch], rowCount[kBatch];
-                    {
-                        // In locals, as in setUpSmallFaces.
-                        const SampleBox* const boxOf = faceBox;
-                        const int top = y0, bottom = y1;
-                        for (int i = 0; i < count; i++) {
-                            const SampleBox box = boxOf[faces[i]];
-                            columnCount[i] = box.colLast - box.colFirst + 1;
-                            rowCount[i] =
-                                std::min(box.rowEnd, bottom) - std::max(box.rowBegin, top);
-                            if (columnCount[i] > 4 || rowCount[i] > 4)
-                                return false;
-                        }
-                    }
                     SmallFaces sf;
                     setUpSmallFaces(faces, count, sf, false);
+                    alignas(32) int32_t columnCount[kBatch], rowCount[kBatch];
+                    for (int i = 0; i < count; i++) {
+                        columnCount[i] = sf.lastColumn[i] - sf.firstColumn[i] + 1;
+                        rowCount[i] = sf.endRow[i] - sf.firstRow[i];
+                        if (columnCount[i] > 4 || rowCount[i] > 4)
+                            return false;
+                    }
                     if (sf.small != uint32_t(rowsBelow(count)))
                         return false;
                     for (int i = 0; i < count; i++)
